@@ -1,0 +1,268 @@
+// Classified background mesh from the BRepMesh tessellation (paper 3.1).
+//
+// Vertices are merged through topology, not coordinates: B-rep points give the
+// dimension-0 vertices, each curve's polygon (shared by every face it bounds,
+// BRepMesh discretises an edge once) gives its dimension-1 vertices, and the
+// remaining triangulation nodes of a face are its own dimension-2 vertices.
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Tool.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+
+#include <cmath>
+#include <unordered_map>
+
+#include "geometry/background_mesh.h"
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+}
+
+// A curve's chain of global vertices with the curve parameter of each.
+struct Chain {
+  std::vector<int> vertex;
+  std::vector<double> t;
+};
+
+// Fills patch.adj from patch.tris: neighbour across the edge opposite each corner.
+void build_adjacency(FacePatch& patch) {
+  std::unordered_map<uint64_t, std::pair<int, int>> open;
+  open.reserve(patch.tris.size() * 2);
+  patch.adj.assign(patch.tris.size(), {-1, -1, -1});
+  for (int t = 0; t < static_cast<int>(patch.tris.size()); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = patch.tris[t][(k + 1) % 3], b = patch.tris[t][(k + 2) % 3];
+      const uint64_t key = edge_key(a, b);
+      auto it = open.find(key);
+      if (it == open.end()) {
+        open.emplace(key, std::make_pair(t, k));
+      } else {
+        patch.adj[t][k] = it->second.first;
+        patch.adj[it->second.first][it->second.second] = t;
+        open.erase(it);
+      }
+    }
+  }
+}
+
+class Builder {
+ public:
+  Builder(const Model& model, BackgroundMesh& bg) : model_(model), m_(model.impl()), bg_(bg) {}
+
+  void run() {
+    const int np = m_.vertices.Extent();
+    for (int p = 1; p <= np; ++p) add_vertex(model_.point_xyz(p), 0, p);
+    chains_.resize(m_.edges.Extent());
+    bg_.patches.resize(m_.faces.Extent());
+    for (int f = 1; f <= m_.faces.Extent(); ++f) build_patch(f);
+    build_edges();
+    build_uses();
+  }
+
+ private:
+  int add_vertex(const Vec3& p, int dim, int entity) {
+    bg_.xyz.push_back(p);
+    bg_.dim.push_back(static_cast<int8_t>(dim));
+    bg_.entity.push_back(entity);
+    return bg_.num_vertices() - 1;
+  }
+
+  // Global vertex of a curve's end (point id) or -1 if the curve has no vertex there.
+  int point_vertex(int point) const { return point > 0 ? point - 1 : -1; }
+
+  // Maps the nodes of a curve's polygon on one face triangulation to global vertices.
+  void map_curve_nodes(int curve, const Poly_PolygonOnTriangulation& poly, const Poly_Triangulation& tri,
+                       const TopLoc_Location& loc, std::vector<int>& local_to_global) {
+    const OcctCurve& cd = m_.curve_data[curve - 1];
+    const int n = poly.NbNodes();
+    const TColStd_Array1OfInteger& nodes = poly.Nodes();
+    std::vector<double> params(n);
+    const bool has_params = poly.HasParameters();
+    for (int i = 0; i < n; ++i)
+      params[i] = has_params ? poly.Parameter(i + 1) : cd.t0 + (cd.t1 - cd.t0) * i / std::max(1, n - 1);
+    auto node_xyz = [&](int i) {
+      gp_Pnt p = tri.Node(nodes(nodes.Lower() + i)).Transformed(loc.Transformation());
+      return Vec3(p.X(), p.Y(), p.Z());
+    };
+    if (cd.degenerated) {
+      const int v = point_vertex(cd.start_point);
+      for (int i = 0; i < n; ++i) local_to_global[nodes(nodes.Lower() + i) - 1] = v;
+      return;
+    }
+    Chain& chain = chains_[curve - 1];
+    if (chain.vertex.empty()) {
+      // First face to use this curve: create its vertices in parameter order.
+      std::vector<int> order(n);
+      for (int i = 0; i < n; ++i) order[i] = i;
+      if (n > 1 && params[0] > params[n - 1]) std::reverse(order.begin(), order.end());
+      for (int j = 0; j < n; ++j) {
+        const int i = order[j];
+        int v;
+        if (j == 0 && point_vertex(cd.start_point) >= 0) v = point_vertex(cd.start_point);
+        else if (j == n - 1 && point_vertex(cd.end_point) >= 0) v = point_vertex(cd.end_point);
+        else v = add_vertex(node_xyz(i), 1, curve);
+        chain.vertex.push_back(v);
+        chain.t.push_back(params[i]);
+      }
+    }
+    // Every use (this face, other faces, a seam's second side) maps by parameter.
+    const double span = std::abs(cd.t1 - cd.t0) + 1e-300;
+    for (int i = 0; i < n; ++i) {
+      auto it = std::lower_bound(chain.t.begin(), chain.t.end(), params[i]);
+      size_t j = static_cast<size_t>(it - chain.t.begin());
+      if (j == chain.t.size() || (j > 0 && std::abs(chain.t[j - 1] - params[i]) < std::abs(chain.t[j] - params[i])))
+        j = j == 0 ? 0 : j - 1;
+      if (std::abs(chain.t[j] - params[i]) > 1e-6 * span) ++mismatched_;
+      local_to_global[nodes(nodes.Lower() + i) - 1] = chain.vertex[j];
+    }
+  }
+
+  void build_patch(int f) {
+    FacePatch& patch = bg_.patches[f - 1];
+    patch.face = f;
+    const TopoDS_Face face = TopoDS::Face(m_.faces(f).Oriented(TopAbs_FORWARD));
+    TopLoc_Location loc;
+    Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+    if (tri.IsNull() || tri->NbTriangles() == 0 || !tri->HasUVNodes()) return;
+    const int n = tri->NbNodes();
+    std::vector<int> local_to_global(n, -1);
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      Handle(Poly_PolygonOnTriangulation) poly = BRep_Tool::PolygonOnTriangulation(e, tri, loc);
+      if (poly.IsNull()) continue;
+      map_curve_nodes(m_.edges.FindIndex(e), *poly, *tri, loc, local_to_global);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (local_to_global[i] >= 0) continue;
+      gp_Pnt p = tri->Node(i + 1).Transformed(loc.Transformation());
+      local_to_global[i] = add_vertex(Vec3(p.X(), p.Y(), p.Z()), 2, f);
+    }
+    patch.vertex = local_to_global;
+    patch.uv.resize(n);
+    for (int i = 0; i < n; ++i) {
+      gp_Pnt2d uv = tri->UVNode(i + 1);
+      patch.uv[i] = Vec2(uv.X(), uv.Y());
+    }
+    const bool reversed = m_.face_data[f - 1].reversed;
+    for (int t = 1; t <= tri->NbTriangles(); ++t) {
+      int a, b, c;
+      tri->Triangle(t).Get(a, b, c);
+      std::array<int, 3> lt = {a - 1, b - 1, c - 1};
+      const Vec2 e1 = patch.uv[lt[1]] - patch.uv[lt[0]], e2 = patch.uv[lt[2]] - patch.uv[lt[0]];
+      if (e1.x() * e2.y() - e1.y() * e2.x() < 0) std::swap(lt[1], lt[2]);  // counter-clockwise in uv
+      patch.tris.push_back(lt);
+      std::array<int, 3> g = {local_to_global[lt[0]], local_to_global[lt[1]], local_to_global[lt[2]]};
+      if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) {
+        patch.global_tri.push_back(-1);  // collapsed onto a pole
+        continue;
+      }
+      if (reversed) std::swap(g[1], g[2]);
+      patch.global_tri.push_back(bg_.num_triangles());
+      bg_.tris.push_back(g);
+      bg_.tri_face.push_back(f);
+    }
+    build_adjacency(patch);
+  }
+
+  void build_edges() {
+    std::unordered_map<uint64_t, int> index;
+    index.reserve(bg_.tris.size() * 2);
+    auto add = [&](int a, int b, int curve) {
+      auto [it, fresh] = index.emplace(edge_key(a, b), static_cast<int>(bg_.edges.size()));
+      if (fresh) {
+        bg_.edges.push_back({std::min(a, b), std::max(a, b)});
+        bg_.edge_curve.push_back(curve);
+      } else if (curve) {
+        bg_.edge_curve[it->second] = curve;
+      }
+    };
+    for (int c = 0; c < static_cast<int>(chains_.size()); ++c)
+      for (size_t i = 1; i < chains_[c].vertex.size(); ++i)
+        if (chains_[c].vertex[i - 1] != chains_[c].vertex[i]) add(chains_[c].vertex[i - 1], chains_[c].vertex[i], c + 1);
+    for (const auto& t : bg_.tris)
+      for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3], 0);
+  }
+
+  void build_uses() {
+    const int nv = bg_.num_vertices();
+    bg_.use_start.assign(nv + 1, 0);
+    for (const auto& p : bg_.patches)
+      for (int g : p.vertex) ++bg_.use_start[g + 1];
+    for (int v = 0; v < nv; ++v) bg_.use_start[v + 1] += bg_.use_start[v];
+    bg_.use_face.resize(bg_.use_start[nv]);
+    bg_.use_local.resize(bg_.use_start[nv]);
+    std::vector<int> fill(bg_.use_start.begin(), bg_.use_start.end() - 1);
+    for (const auto& p : bg_.patches)
+      for (int l = 0; l < static_cast<int>(p.vertex.size()); ++l) {
+        const int slot = fill[p.vertex[l]]++;
+        bg_.use_face[slot] = p.face;
+        bg_.use_local[slot] = l;
+      }
+  }
+
+  const Model& model_;
+  const Model::Impl& m_;
+  BackgroundMesh& bg_;
+  std::vector<Chain> chains_;
+  int mismatched_ = 0;
+};
+
+}  // namespace
+
+BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions& options) {
+  if (!(options.deflection_rel > 0) || !(options.angle_deg > 0))
+    throw Error("tessellation deflection and angle must be positive");
+  const double diag = model.info().diagonal();
+  try {
+    BRepMesh_IncrementalMesh mesh(model.impl().shape, options.deflection_rel * diag, false,
+                                  options.angle_deg * M_PI / 180.0, true);
+  } catch (const Standard_Failure& e) {
+    throw Error(std::string("tessellation failed: ") + e.GetMessageString());
+  }
+  BackgroundMesh bg;
+  Builder(model, bg).run();
+  return bg;
+}
+
+double BackgroundMesh::area() const {
+  double a = 0;
+  for (const auto& t : tris) a += 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
+  return a;
+}
+
+std::vector<int> BackgroundMesh::edge_valence() const {
+  std::unordered_map<uint64_t, int> index;
+  index.reserve(edges.size() * 2);
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) index.emplace(edge_key(edges[e][0], edges[e][1]), e);
+  std::vector<int> val(edges.size(), 0);
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) ++val[index.at(edge_key(t[k], t[(k + 1) % 3]))];
+  return val;
+}
+
+void BackgroundMesh::vertex_edges(std::vector<int>& start, std::vector<int>& ids) const {
+  const int nv = num_vertices();
+  start.assign(nv + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  ids.resize(start[nv]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    ids[fill[edges[e][0]]++] = e;
+    ids[fill[edges[e][1]]++] = e;
+  }
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,63 @@
+// The classified background mesh (paper section 3.1, Definition 1).
+//
+// One global triangle mesh built from the B-rep tessellation: vertices are
+// shared across faces, every vertex/edge/triangle is classified on the B-rep
+// entity it lies on, and every face keeps its own uv triangulation (where a
+// seam vertex appears twice, with its two uvs) for size queries in uv.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+class Model;
+
+// One face's triangulation in its own parameter space.
+struct FacePatch {
+  int face = 0;                             // face id
+  std::vector<int> vertex;                  // #n local -> global vertex
+  std::vector<Vec2> uv;                     // #n local uv
+  std::vector<std::array<int, 3>> tris;     // #t local vertex ids, counter-clockwise in uv
+  std::vector<std::array<int, 3>> adj;      // #t neighbour across the edge opposite corner k, -1 on the boundary
+  std::vector<int> global_tri;              // #t global triangle id, -1 where degenerate in xyz (poles)
+};
+
+struct BackgroundMesh {
+  // Vertices: #V
+  std::vector<Vec3> xyz;
+  std::vector<int8_t> dim;     // classification dimension: 0 point, 1 curve, 2 face
+  std::vector<int> entity;     // id of the point, curve or face the vertex is classified on
+  // Triangles: #T (global vertex ids, oriented as the face lies in its shell)
+  std::vector<std::array<int, 3>> tris;
+  std::vector<int> tri_face;   // face id per triangle
+  // Edges: #E unique vertex pairs (a < b)
+  std::vector<std::array<int, 2>> edges;
+  std::vector<int> edge_curve; // curve id per edge, 0 for edges inside a face
+  // Per face (index face id - 1)
+  std::vector<FacePatch> patches;
+  // Vertex -> (face, local vertex) uses, CSR: uses of v are [use_start[v], use_start[v+1])
+  std::vector<int> use_start;
+  std::vector<int> use_face, use_local;
+
+  int num_vertices() const { return static_cast<int>(xyz.size()); }
+  int num_triangles() const { return static_cast<int>(tris.size()); }
+  double area() const;
+  // Edge -> number of triangles using it (watertight closed shells: all 2).
+  std::vector<int> edge_valence() const;
+  // Vertex -> incident edge ids, CSR form.
+  void vertex_edges(std::vector<int>& start, std::vector<int>& edge_ids) const;
+};
+
+struct BackgroundOptions {
+  double deflection_rel = 1e-3;   // linear deflection / bounding-box diagonal
+  double angle_deg = 20.0;        // angular deflection of the tessellation
+};
+
+// Tessellates the model with BRepMesh and builds the classified mesh.
+BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions& options = {});
+
+}  // namespace sizemesh

@@ -1,0 +1,74 @@
+// Kernel-free view of a B-rep for sizing/ and mesher/ (no OpenCASCADE types).
+//
+// Ids are 1-based: faces, curves (B-rep edges) and points (B-rep vertices) in
+// the order of TopExp::MapShapes on the loaded shape. Every method is safe to
+// call from several threads at once.
+#pragma once
+
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+// Surface position and first derivatives at one uv.
+struct SurfaceD1 {
+  Vec3 p, du, dv;
+};
+
+// One use of a curve in a face's boundary loop.
+struct CurveUse {
+  int curve = 0;          // curve id
+  bool reversed = false;  // traversed from t1 to t0 in the loop
+  int side = 0;           // which pcurve on a seam (0 or 1); 0 elsewhere
+};
+
+// A closed boundary loop (B-rep wire) of a face; loops[0] is the outer one.
+using FaceLoop = std::vector<CurveUse>;
+
+struct UVBox {
+  Vec2 lo, hi;
+};
+
+class Geometry {
+ public:
+  virtual ~Geometry() = default;
+
+  virtual int num_faces() const = 0;
+  virtual int num_curves() const = 0;
+  virtual int num_points() const = 0;
+
+  // --- faces ---
+  virtual SurfaceD1 eval_face(int face, const Vec2& uv) const = 0;
+  // Largest absolute principal curvature at uv (1/length); false where it is undefined.
+  virtual bool max_curvature(int face, const Vec2& uv, double& k) const = 0;
+  // True where the face's orientation in its shell flips the surface normal.
+  virtual bool face_reversed(int face) const = 0;
+  virtual UVBox face_uv_bounds(int face) const = 0;
+  // Period in u / v, 0 when not periodic.
+  virtual double face_period_u(int face) const = 0;
+  virtual double face_period_v(int face) const = 0;
+  virtual double face_area(int face) const = 0;            // exact (BRepGProp)
+  virtual double face_boundary_length(int face) const = 0; // total wire length
+  virtual std::vector<FaceLoop> face_loops(int face) const = 0;
+  // Closest point on the face's surface to xyz, starting from uv; false if it fails.
+  virtual bool project_to_face(int face, const Vec3& xyz, Vec2& uv) const = 0;
+
+  // --- curves ---
+  virtual void curve_range(int curve, double& t0, double& t1) const = 0;
+  virtual bool curve_degenerated(int curve) const = 0;
+  virtual Vec3 eval_curve(int curve, double t) const = 0;
+  virtual Vec3 curve_tangent(int curve, double t) const = 0;  // d xyz / dt
+  virtual bool curve_curvature(int curve, double t, double& k) const = 0;
+  virtual double curve_length(int curve) const = 0;
+  // End points (point ids) at t0 and t1.
+  virtual int curve_start_point(int curve) const = 0;
+  virtual int curve_end_point(int curve) const = 0;
+  // uv of the curve at t on a face it bounds (side 1 is a seam's second pcurve).
+  virtual Vec2 eval_pcurve(int curve, int face, int side, double t) const = 0;
+
+  // --- points ---
+  virtual Vec3 point_xyz(int point) const = 0;
+};
+
+}  // namespace sizemesh

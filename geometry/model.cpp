@@ -1,0 +1,360 @@
+// Model: sewing, stable ids, cached per-entity geometry, and the Geometry interface.
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomLProp_CLProps.hxx>
+#include <GeomLProp_SLProps.hxx>
+#include <Precision.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+
+#include <cmath>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+Vec3 to_vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+Vec3 to_vec(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
+
+// Curves bounding exactly one face side (seams and degenerate curves excluded).
+int count_free_curves(const TopoDS_Shape& shape) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  int free = 0;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(edge_faces.FindKey(i));
+    if (BRep_Tool::Degenerated(e)) continue;
+    const auto& faces = edge_faces(i);
+    if (faces.Extent() == 1 && !BRep_Tool::IsClosed(e, TopoDS::Face(faces.First()))) ++free;
+  }
+  return free;
+}
+
+double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box, false);
+  if (box.IsVoid()) throw Error("the shape has no extent");
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  lo = {x0, y0, z0};
+  hi = {x1, y1, z1};
+  return (hi - lo).norm();
+}
+
+// Sewing returns shells; closed ones become solids again so the model keeps its volumes.
+TopoDS_Shape solids_from_closed_shells(const TopoDS_Shape& sewn) {
+  if (TopExp_Explorer(sewn, TopAbs_SOLID).More()) return sewn;
+  TopoDS_Compound out;
+  BRep_Builder b;
+  b.MakeCompound(out);
+  bool any_solid = false;
+  for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
+    TopoDS_Shell shell = TopoDS::Shell(ex.Current());
+    if (BRep_Tool::IsClosed(shell)) {
+      BRepBuilderAPI_MakeSolid make(shell);
+      if (make.IsDone()) {
+        TopoDS_Solid solid = make.Solid();
+        BRepLib::OrientClosedSolid(solid);
+        b.Add(out, solid);
+        any_solid = true;
+        continue;
+      }
+    }
+    b.Add(out, shell);
+  }
+  for (TopExp_Explorer ex(sewn, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) b.Add(out, ex.Current());
+  return any_solid ? TopoDS_Shape(out) : sewn;
+}
+
+OcctFace make_face_data(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges) {
+  OcctFace d;
+  d.reversed = face.Orientation() == TopAbs_REVERSED;
+  TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
+  d.surface = BRep_Tool::Surface(fwd);
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(fwd, u0, u1, v0, v1);
+  d.uv_bounds = {Vec2(u0, v0), Vec2(u1, v1)};
+  if (!d.surface.IsNull()) {
+    if (d.surface->IsUPeriodic()) d.period_u = d.surface->UPeriod();
+    if (d.surface->IsVPeriodic()) d.period_v = d.surface->VPeriod();
+  }
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(fwd, props);
+  d.area = std::abs(props.Mass());
+  // Boundary loops, outer first, edges in traversal order. The boundary length
+  // for the proximity size (paper 3.2.2) leaves out seams and poles: they are
+  // not borders of the face.
+  TopoDS_Wire outer = BRepTools::OuterWire(fwd);
+  std::vector<TopoDS_Wire> wires;
+  if (!outer.IsNull()) wires.push_back(outer);
+  for (TopExp_Explorer ex(fwd, TopAbs_WIRE); ex.More(); ex.Next())
+    if (!ex.Current().IsSame(outer)) wires.push_back(TopoDS::Wire(ex.Current()));
+  for (const TopoDS_Wire& w : wires) {
+    FaceLoop loop;
+    for (BRepTools_WireExplorer wex(w, fwd); wex.More(); wex.Next()) {
+      const TopoDS_Edge& e = wex.Current();
+      CurveUse use;
+      use.curve = edges.FindIndex(e);
+      use.reversed = e.Orientation() == TopAbs_REVERSED;
+      const bool seam = BRep_Tool::IsClosed(e, fwd);
+      use.side = seam && use.reversed ? 1 : 0;
+      loop.push_back(use);
+      if (!seam && !BRep_Tool::Degenerated(e)) {
+        BRepAdaptor_Curve c(e);
+        d.boundary_length += GCPnts_AbscissaPoint::Length(c);
+      }
+    }
+    if (!loop.empty()) d.loops.push_back(std::move(loop));
+  }
+  return d;
+}
+
+OcctCurve make_curve_data(const TopoDS_Edge& edge_any, const TopoDS_Shape& shape,
+                          const TopTools_IndexedMapOfShape& vertices,
+                          const TopTools_IndexedMapOfShape& faces,
+                          const TopTools_IndexedDataMapOfShapeListOfShape& edge_faces) {
+  OcctCurve d;
+  TopoDS_Edge edge = TopoDS::Edge(edge_any.Oriented(TopAbs_FORWARD));
+  d.degenerated = BRep_Tool::Degenerated(edge);
+  BRep_Tool::Range(edge, d.t0, d.t1);
+  TopoDS_Vertex v0, v1;
+  TopExp::Vertices(edge, v0, v1);
+  d.start_point = v0.IsNull() ? 0 : vertices.FindIndex(v0);
+  d.end_point = v1.IsNull() ? 0 : vertices.FindIndex(v1);
+  if (!d.degenerated) {
+    double f, l;
+    d.curve = BRep_Tool::Curve(edge, f, l);
+    if (!d.curve.IsNull()) d.length = GCPnts_AbscissaPoint::Length(BRepAdaptor_Curve(edge));
+  }
+  const int k = edge_faces.FindIndex(edge);
+  if (k == 0) return d;
+  for (const TopoDS_Shape& fs : edge_faces(k)) {
+    TopoDS_Face f = TopoDS::Face(fs.Oriented(TopAbs_FORWARD));
+    const int fid = faces.FindIndex(f);
+    const int sides = BRep_Tool::IsClosed(edge, f) ? 2 : 1;
+    for (int side = 0; side < sides; ++side) {
+      TopoDS_Edge e = TopoDS::Edge(edge.Oriented(side ? TopAbs_REVERSED : TopAbs_FORWARD));
+      double f0, f1;
+      OcctPCurve pc;
+      pc.face = fid;
+      pc.side = side;
+      pc.curve = BRep_Tool::CurveOnSurface(e, f, f0, f1);
+      if (!pc.curve.IsNull()) d.pcurves.push_back(pc);
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOptions& options,
+                       const std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
+  auto impl = std::make_shared<Model::Impl>();
+  TopoDS_Shape shape = shape_in;
+  const double diag = bbox_diagonal(shape, info.bbox_min, info.bbox_max);
+  info.free_curves_before_sewing = count_free_curves(shape);
+  {
+    TopTools_IndexedMapOfShape fm;
+    TopExp::MapShapes(shape, TopAbs_FACE, fm);
+    info.faces_before_sewing = fm.Extent();
+  }
+  std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
+  if (options.sew && info.free_curves_before_sewing > 0) {
+    const double tol = options.sewing_tolerance_rel * diag;
+    if (!(tol > 0) || !std::isfinite(tol)) throw Error("sewing tolerance must be positive");
+    sewing = std::make_unique<BRepBuilderAPI_Sewing>(tol);
+    sewing->Add(shape);
+    sewing->Perform();
+    if (!sewing->SewedShape().IsNull()) {
+      shape = solids_from_closed_shells(sewing->SewedShape());
+      info.sewn = true;
+    }
+  }
+  info.free_curves_after_sewing = count_free_curves(shape);
+  bbox_diagonal(shape, info.bbox_min, info.bbox_max);
+
+  impl->shape = shape;
+  TopExp::MapShapes(shape, TopAbs_FACE, impl->faces);
+  TopExp::MapShapes(shape, TopAbs_EDGE, impl->edges);
+  TopExp::MapShapes(shape, TopAbs_VERTEX, impl->vertices);
+  TopExp::MapShapes(shape, TopAbs_SOLID, impl->solids);
+  TopExp::MapShapes(shape, TopAbs_SHELL, impl->shells);
+  info.faces = impl->faces.Extent();
+  info.curves = impl->edges.Extent();
+  info.points = impl->vertices.Extent();
+  info.solids = impl->solids.Extent();
+  info.shells = impl->shells.Extent();
+  if (info.faces == 0) throw Error("the model has no faces");
+
+  impl->face_names.assign(info.faces, "");
+  for (const auto& [s, name] : names) {
+    TopoDS_Shape target = s;
+    if (sewing && sewing->IsModified(s)) target = sewing->Modified(s);
+    const int id = impl->faces.FindIndex(target);
+    if (id > 0) impl->face_names[id - 1] = name;
+  }
+
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  try {
+    impl->face_data.reserve(info.faces);
+    for (int f = 1; f <= info.faces; ++f)
+      impl->face_data.push_back(make_face_data(TopoDS::Face(impl->faces(f)), impl->edges));
+    impl->curve_data.reserve(info.curves);
+    for (int c = 1; c <= info.curves; ++c)
+      impl->curve_data.push_back(make_curve_data(TopoDS::Edge(impl->edges(c)), shape, impl->vertices,
+                                                 impl->faces, edge_faces));
+  } catch (const Standard_Failure& e) {
+    throw Error(std::string("broken shape: ") + e.GetMessageString());
+  }
+  impl->info = info;
+  return Model(impl);
+}
+
+Model model_from_shape(const TopoDS_Shape& shape, const LoadOptions& options) {
+  ModelInfo info;
+  info.path = "(built in code)";
+  info.format = "shape";
+  info.unit = "unknown";
+  return model_from_shape(shape, info, options);
+}
+
+Model::Model(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Model::~Model() = default;
+
+const ModelInfo& Model::info() const { return impl_->info; }
+std::string Model::face_name(int face) const { return impl_->face_names.at(face - 1); }
+
+std::vector<std::vector<int>> Model::solid_faces() const {
+  std::vector<std::vector<int>> out;
+  for (int s = 1; s <= impl_->solids.Extent(); ++s) {
+    std::vector<int> ids;
+    TopTools_IndexedMapOfShape fm;
+    TopExp::MapShapes(impl_->solids(s), TopAbs_FACE, fm);
+    for (int i = 1; i <= fm.Extent(); ++i) ids.push_back(impl_->faces.FindIndex(fm(i)));
+    out.push_back(std::move(ids));
+  }
+  return out;
+}
+
+int Model::num_faces() const { return impl_->faces.Extent(); }
+int Model::num_curves() const { return impl_->edges.Extent(); }
+int Model::num_points() const { return impl_->vertices.Extent(); }
+
+SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
+  gp_Pnt p;
+  gp_Vec du, dv;
+  impl_->face_data[face - 1].surface->D1(uv.x(), uv.y(), p, du, dv);
+  return {to_vec(p), to_vec(du), to_vec(dv)};
+}
+
+bool Model::max_curvature(int face, const Vec2& uv, double& k) const {
+  const auto& s = impl_->face_data[face - 1].surface;
+  try {
+    GeomLProp_SLProps props(s, uv.x(), uv.y(), 2, Precision::Confusion());
+    if (!props.IsCurvatureDefined()) return false;
+    k = std::max(std::abs(props.MaxCurvature()), std::abs(props.MinCurvature()));
+    return std::isfinite(k);
+  } catch (const Standard_Failure&) {
+    return false;
+  }
+}
+
+bool Model::face_reversed(int face) const { return impl_->face_data[face - 1].reversed; }
+UVBox Model::face_uv_bounds(int face) const { return impl_->face_data[face - 1].uv_bounds; }
+double Model::face_period_u(int face) const { return impl_->face_data[face - 1].period_u; }
+double Model::face_period_v(int face) const { return impl_->face_data[face - 1].period_v; }
+double Model::face_area(int face) const { return impl_->face_data[face - 1].area; }
+double Model::face_boundary_length(int face) const { return impl_->face_data[face - 1].boundary_length; }
+std::vector<FaceLoop> Model::face_loops(int face) const { return impl_->face_data[face - 1].loops; }
+
+// Newton iterations on |S(uv) - xyz|^2 from the given uv.
+bool Model::project_to_face(int face, const Vec3& xyz, Vec2& uv) const {
+  const UVBox box = face_uv_bounds(face);
+  const Vec2 span = box.hi - box.lo;
+  for (int it = 0; it < 30; ++it) {
+    const SurfaceD1 s = eval_face(face, uv);
+    const Vec3 r = xyz - s.p;
+    Eigen::Matrix2d a;
+    a << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
+    const Vec2 g(s.du.dot(r), s.dv.dot(r));
+    const double det = a.determinant();
+    if (!(std::abs(det) > 1e-300)) return false;
+    Vec2 step = a.inverse() * g;
+    // Keep a step within the face's parameter box scale to avoid jumping away.
+    const double lim = 0.25 * span.norm();
+    if (step.norm() > lim && lim > 0) step *= lim / step.norm();
+    uv += step;
+    if (step.norm() <= 1e-12 * (1 + span.norm())) return true;
+  }
+  return std::isfinite(uv.x()) && std::isfinite(uv.y());
+}
+
+void Model::curve_range(int curve, double& t0, double& t1) const {
+  t0 = impl_->curve_data[curve - 1].t0;
+  t1 = impl_->curve_data[curve - 1].t1;
+}
+bool Model::curve_degenerated(int curve) const { return impl_->curve_data[curve - 1].degenerated; }
+
+Vec3 Model::eval_curve(int curve, double t) const {
+  const auto& c = impl_->curve_data[curve - 1];
+  if (c.curve.IsNull()) return point_xyz(c.start_point);
+  return to_vec(c.curve->Value(t));
+}
+
+Vec3 Model::curve_tangent(int curve, double t) const {
+  const auto& c = impl_->curve_data[curve - 1];
+  if (c.curve.IsNull()) return Vec3::Zero();
+  gp_Pnt p;
+  gp_Vec d;
+  c.curve->D1(t, p, d);
+  return to_vec(d);
+}
+
+bool Model::curve_curvature(int curve, double t, double& k) const {
+  const auto& c = impl_->curve_data[curve - 1];
+  if (c.curve.IsNull()) return false;
+  try {
+    GeomLProp_CLProps props(c.curve, t, 2, Precision::Confusion());
+    if (!props.IsTangentDefined()) return false;
+    k = std::abs(props.Curvature());
+    return std::isfinite(k);
+  } catch (const Standard_Failure&) {
+    return false;
+  }
+}
+
+double Model::curve_length(int curve) const { return impl_->curve_data[curve - 1].length; }
+int Model::curve_start_point(int curve) const { return impl_->curve_data[curve - 1].start_point; }
+int Model::curve_end_point(int curve) const { return impl_->curve_data[curve - 1].end_point; }
+
+Vec2 Model::eval_pcurve(int curve, int face, int side, double t) const {
+  for (const auto& pc : impl_->curve_data[curve - 1].pcurves)
+    if (pc.face == face && pc.side == side) {
+      gp_Pnt2d p = pc.curve->Value(t);
+      return {p.X(), p.Y()};
+    }
+  throw Error("curve " + std::to_string(curve) + " has no parameter curve on face " + std::to_string(face));
+}
+
+Vec3 Model::point_xyz(int point) const {
+  return to_vec(BRep_Tool::Pnt(TopoDS::Vertex(impl_->vertices(point))));
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,79 @@
+// A loaded CAD model: the B-rep with stable ids, its unit and sewing report.
+// OpenCASCADE stays behind the pimpl; sizing/ and mesher/ use it as a Geometry.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/geometry.h"
+
+namespace sizemesh {
+
+struct LoadOptions {
+  bool sew = true;                  // sew faces that touch so they share curves
+  double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
+};
+
+struct ModelInfo {
+  std::string path;
+  std::string format;      // STEP, IGES or BREP
+  std::string unit;        // length unit of the file, e.g. "mm"
+  Vec3 bbox_min, bbox_max;
+  int solids = 0, shells = 0, faces = 0, curves = 0, points = 0;
+  int faces_before_sewing = 0;   // sewing drops faces degenerate at its tolerance
+  int free_curves_before_sewing = 0;
+  int free_curves_after_sewing = 0;
+  bool sewn = false;       // sewing was run
+  double diagonal() const { return (bbox_max - bbox_min).norm(); }
+};
+
+class Model : public Geometry {
+ public:
+  struct Impl;  // OpenCASCADE data, geometry/occt_model.h
+
+  explicit Model(std::shared_ptr<Impl> impl);
+  ~Model() override;
+
+  const ModelInfo& info() const;
+  const Impl& impl() const { return *impl_; }
+  // Name from the file (STEP entity name) or empty.
+  std::string face_name(int face) const;
+  // Faces (ids) of each solid; empty when the model has no solids.
+  std::vector<std::vector<int>> solid_faces() const;
+  // True when every non-degenerate curve bounds exactly two face sides.
+  bool closed() const { return info().free_curves_after_sewing == 0; }
+
+  int num_faces() const override;
+  int num_curves() const override;
+  int num_points() const override;
+  SurfaceD1 eval_face(int face, const Vec2& uv) const override;
+  bool max_curvature(int face, const Vec2& uv, double& k) const override;
+  bool face_reversed(int face) const override;
+  UVBox face_uv_bounds(int face) const override;
+  double face_period_u(int face) const override;
+  double face_period_v(int face) const override;
+  double face_area(int face) const override;
+  double face_boundary_length(int face) const override;
+  std::vector<FaceLoop> face_loops(int face) const override;
+  bool project_to_face(int face, const Vec3& xyz, Vec2& uv) const override;
+  void curve_range(int curve, double& t0, double& t1) const override;
+  bool curve_degenerated(int curve) const override;
+  Vec3 eval_curve(int curve, double t) const override;
+  Vec3 curve_tangent(int curve, double t) const override;
+  bool curve_curvature(int curve, double t, double& k) const override;
+  double curve_length(int curve) const override;
+  int curve_start_point(int curve) const override;
+  int curve_end_point(int curve) const override;
+  Vec2 eval_pcurve(int curve, int face, int side, double t) const override;
+  Vec3 point_xyz(int point) const override;
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
+// Reads STEP (.stp/.step), IGES (.igs/.iges) or OpenCASCADE BREP (.brep),
+// chosen by content first and extension second. Throws Error with one sentence.
+Model load_model(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace sizemesh

@@ -1,0 +1,198 @@
+// Reading STEP, IGES and BREP files into a Model (format by content, then extension).
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <StepRepr_RepresentationItem.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// OpenCASCADE prints progress and warnings to stdout; sizemesh speaks for itself.
+void silence_occt() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  const Handle(Message_Messenger)& m = Message::DefaultMessenger();
+  m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+}
+
+enum class Format { Step, Iges, Brep, Unknown };
+
+Format format_from_content(const std::string& head) {
+  if (head.find("ISO-10303-21") != std::string::npos) return Format::Step;
+  if (head.find("DBRep_DrawableShape") != std::string::npos ||
+      head.find("CASCADE Topology") != std::string::npos)
+    return Format::Brep;
+  // IGES: fixed 80-column records with the section letter in column 73.
+  std::string first = head.substr(0, head.find('\n'));
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  if (first.size() >= 73 && first[72] == 'S') return Format::Iges;
+  return Format::Unknown;
+}
+
+Format format_from_extension(const std::string& ext) {
+  if (ext == ".stp" || ext == ".step") return Format::Step;
+  if (ext == ".igs" || ext == ".iges") return Format::Iges;
+  if (ext == ".brep" || ext == ".brp") return Format::Brep;
+  return Format::Unknown;
+}
+
+const char* format_name(Format f) {
+  switch (f) {
+    case Format::Step: return "STEP";
+    case Format::Iges: return "IGES";
+    case Format::Brep: return "BREP";
+    default: return "unknown";
+  }
+}
+
+// STEP length-unit names to (display name, translator name); longest name first
+// so that MILLIMETRE is not taken for METRE.
+std::pair<std::string, std::string> step_unit(const std::string& name) {
+  static const std::vector<std::pair<std::string, std::pair<std::string, std::string>>> units = {
+      {"MICROMETRE", {"um", "UM"}}, {"MILLIMETRE", {"mm", "MM"}}, {"CENTIMETRE", {"cm", "CM"}},
+      {"KILOMETRE", {"km", "KM"}},  {"METRE", {"m", "M"}},        {"INCH", {"in", "INCH"}},
+      {"FOOT", {"ft", "FT"}},       {"MILE", {"mi", "MI"}}};
+  std::string up = name;
+  std::transform(up.begin(), up.end(), up.begin(), [](unsigned char c) { return std::toupper(c); });
+  for (const auto& [key, value] : units)
+    if (up.find(key) != std::string::npos) return value;
+  return {"mm", "MM"};
+}
+
+// IGES global-section unit flag to (display name, translator name).
+std::pair<std::string, std::string> iges_unit(int flag) {
+  switch (flag) {
+    case 1: return {"in", "INCH"};
+    case 4: return {"ft", "FT"};
+    case 5: return {"mi", "MI"};
+    case 6: return {"m", "M"};
+    case 7: return {"km", "KM"};
+    case 8: return {"mil", "MIL"};
+    case 9: return {"um", "UM"};
+    case 10: return {"cm", "CM"};
+    case 11: return {"uin", "UIN"};
+    default: return {"mm", "MM"};
+  }
+}
+
+TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
+                       std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
+  STEPControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw Error("cannot parse STEP file '" + path + "' (truncated or malformed)");
+  TColStd_SequenceOfAsciiString length_units, angle_units, solid_angle_units;
+  reader.FileUnits(length_units, angle_units, solid_angle_units);
+  auto unit = step_unit(length_units.IsEmpty() ? "MILLIMETRE" : length_units.First().ToCString());
+  info.unit = unit.first;
+  Interface_Static::SetCVal("xstep.cascade.unit", unit.second.c_str());
+  if (reader.NbRootsForTransfer() == 0) throw Error("STEP file '" + path + "' contains no geometry");
+  reader.TransferRoots();
+  TopoDS_Shape shape = reader.OneShape();
+  // Entity names (faces and solids), when the file gives them.
+  Handle(XSControl_TransferReader) tr = reader.WS()->TransferReader();
+  for (TopAbs_ShapeEnum kind : {TopAbs_SOLID, TopAbs_FACE}) {
+    for (TopExp_Explorer ex(shape, kind); ex.More(); ex.Next()) {
+      Handle(StepRepr_RepresentationItem) item =
+          Handle(StepRepr_RepresentationItem)::DownCast(tr->EntityFromShapeResult(ex.Current(), 1));
+      if (item.IsNull() || item->Name().IsNull() || item->Name()->Length() == 0) continue;
+      std::string name = item->Name()->ToCString();
+      if (name != "NONE") names.emplace_back(ex.Current(), name);
+    }
+  }
+  return shape;
+}
+
+TopoDS_Shape read_iges(const std::string& path, ModelInfo& info) {
+  IGESControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw Error("cannot parse IGES file '" + path + "' (truncated or malformed)");
+  auto unit = iges_unit(reader.IGESModel()->GlobalSection().UnitFlag());
+  info.unit = unit.first;
+  Interface_Static::SetCVal("xstep.cascade.unit", unit.second.c_str());
+  if (reader.NbRootsForTransfer() == 0) throw Error("IGES file '" + path + "' contains no geometry");
+  reader.TransferRoots();
+  return reader.OneShape();
+}
+
+TopoDS_Shape read_brep(const std::string& path, ModelInfo& info) {
+  TopoDS_Shape shape;
+  BRep_Builder builder;
+  if (!BRepTools::Read(shape, path.c_str(), builder))
+    throw Error("cannot parse BREP file '" + path + "' (truncated or malformed)");
+  info.unit = "unknown";  // BREP files carry no unit
+  return shape;
+}
+
+}  // namespace
+
+Model load_model(const std::string& path, const LoadOptions& options) {
+  silence_occt();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("no such file: '" + path + "'");
+  if (fs::is_directory(path, ec)) throw Error("'" + path + "' is a directory, not a CAD file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open '" + path + "' for reading");
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (head.empty()) throw Error("'" + path + "' is empty");
+
+  const std::string ext = lower(fs::path(path).extension().string());
+  Format by_content = format_from_content(head);
+  Format by_ext = format_from_extension(ext);
+  if (by_content == Format::Unknown) {
+    if (by_ext == Format::Unknown)
+      throw Error("'" + path + "' is not a STEP, IGES or BREP file (unknown extension '" + ext + "')");
+    throw Error("'" + path + "' does not look like a " + format_name(by_ext) + " file");
+  }
+
+  ModelInfo info;
+  info.path = path;
+  info.format = format_name(by_content);
+  std::vector<std::pair<TopoDS_Shape, std::string>> names;
+  TopoDS_Shape shape;
+  try {
+    switch (by_content) {
+      case Format::Step: shape = read_step(path, info, names); break;
+      case Format::Iges: shape = read_iges(path, info); break;
+      default: shape = read_brep(path, info); break;
+    }
+  } catch (const Standard_Failure& e) {
+    throw Error("cannot read '" + path + "': " + e.GetMessageString());
+  }
+  if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
+    throw Error("'" + path + "' contains no surfaces to mesh");
+  return model_from_shape(shape, info, options, names);
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,137 @@
+#include "sizing/params.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void check_phi(double phi, const std::string& where) {
+  if (!(phi > 0 && phi < 180)) throw Error(where + "phi_c must be in (0, 180) degrees, got " + num(phi));
+}
+void check_mu(double mu, const std::string& where) {
+  if (!(mu > 0) || !std::isfinite(mu)) throw Error(where + "mu_d must be positive, got " + num(mu));
+}
+void check_beta(double beta, const std::string& where) {
+  if (!(beta >= 1) || !std::isfinite(beta)) throw Error(where + "beta must be at least 1, got " + num(beta));
+}
+template <class T>
+void check_ids(const std::map<int, T>& m, int count, const std::string& kind) {
+  for (const auto& [id, v] : m)
+    if (id < 1 || id > count)
+      throw Error("config names " + kind + " " + std::to_string(id) + " but the model has " + std::to_string(count) +
+                  " " + kind + "s");
+}
+void check_size(const std::map<int, UserSize>& m, const std::string& kind) {
+  for (const auto& [id, s] : m)
+    if (s.expression.empty() && !(s.value > 0 && std::isfinite(s.value)))
+      throw Error("size of " + kind + " " + std::to_string(id) + " must be positive, got " + num(s.value));
+}
+
+using nlohmann::json;
+
+int parse_id(const std::string& key, const std::string& section) {
+  size_t pos = 0;
+  int id = 0;
+  try {
+    id = std::stoi(key, &pos);
+  } catch (...) {
+    pos = 0;
+  }
+  if (pos != key.size() || key.empty()) throw Error("config: '" + section + "' key '" + key + "' is not an id");
+  return id;
+}
+
+double number(const json& j, const std::string& what) {
+  if (!j.is_number()) throw Error("config: " + what + " must be a number");
+  return j.get<double>();
+}
+
+UserSize user_size(const json& j, const std::string& what) {
+  UserSize s;
+  if (j.is_number()) s.value = j.get<double>();
+  else if (j.is_string()) s.expression = j.get<std::string>();
+  else throw Error("config: " + what + " must be a number or an expression string");
+  return s;
+}
+
+// Reads {"<id>": value, ...} into m.
+template <class T, class F>
+void read_map(const json& j, const std::string& section, std::map<int, T>& m, F convert) {
+  if (!j.is_object()) throw Error("config: '" + section + "' must be an object of id: value");
+  for (auto it = j.begin(); it != j.end(); ++it)
+    m[parse_id(it.key(), section)] = convert(it.value(), section + "." + it.key());
+}
+
+}  // namespace
+
+void validate(const SizingParams& p, double diagonal, int points, int curves, int faces) {
+  check_phi(p.phi_c_deg, "");
+  check_mu(p.mu_d, "");
+  check_beta(p.beta, "");
+  const double h_min = p.resolved_h_min(diagonal), h_max = p.resolved_h_max(diagonal);
+  if (!(h_min > 0) || !std::isfinite(h_min)) throw Error("h_min must be positive, got " + num(h_min));
+  if (!(h_max > 0) || !std::isfinite(h_max)) throw Error("h_max must be positive, got " + num(h_max));
+  if (h_min > h_max) throw Error("h_min (" + num(h_min) + ") is larger than h_max (" + num(h_max) + ")");
+  for (const auto& [id, v] : p.curve_phi_c_deg) check_phi(v, "curve " + std::to_string(id) + ": ");
+  for (const auto& [id, v] : p.face_phi_c_deg) check_phi(v, "face " + std::to_string(id) + ": ");
+  for (const auto& [id, v] : p.face_mu_d) check_mu(v, "face " + std::to_string(id) + ": ");
+  for (const auto& [id, v] : p.face_beta) check_beta(v, "face " + std::to_string(id) + ": ");
+  check_ids(p.curve_phi_c_deg, curves, "curve");
+  check_ids(p.face_phi_c_deg, faces, "face");
+  check_ids(p.face_mu_d, faces, "face");
+  check_ids(p.face_beta, faces, "face");
+  check_ids(p.point_size, points, "point");
+  check_ids(p.curve_size, curves, "curve");
+  check_ids(p.face_size, faces, "face");
+  check_size(p.point_size, "point");
+  check_size(p.curve_size, "curve");
+  check_size(p.face_size, "face");
+}
+
+void read_config(const std::string& path, SizingParams& p) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot read config file '" + path + "'");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw Error("config file '" + path + "' is not valid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
+  static const std::set<std::string> known = {"phi_c",      "mu_d",      "beta",      "h_min",   "h_max",
+                                              "local_proximity", "curve_phi_c", "face_phi_c", "face_mu_d",
+                                              "face_beta",  "point_size", "curve_size", "face_size"};
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
+  if (j.contains("phi_c")) p.phi_c_deg = number(j["phi_c"], "phi_c");
+  if (j.contains("mu_d")) p.mu_d = number(j["mu_d"], "mu_d");
+  if (j.contains("beta")) p.beta = number(j["beta"], "beta");
+  if (j.contains("h_min")) p.h_min = number(j["h_min"], "h_min");
+  if (j.contains("h_max")) p.h_max = number(j["h_max"], "h_max");
+  if (j.contains("local_proximity")) {
+    if (!j["local_proximity"].is_boolean()) throw Error("config: local_proximity must be true or false");
+    p.local_proximity = j["local_proximity"].get<bool>();
+  }
+  if (j.contains("curve_phi_c")) read_map(j["curve_phi_c"], "curve_phi_c", p.curve_phi_c_deg, number);
+  if (j.contains("face_phi_c")) read_map(j["face_phi_c"], "face_phi_c", p.face_phi_c_deg, number);
+  if (j.contains("face_mu_d")) read_map(j["face_mu_d"], "face_mu_d", p.face_mu_d, number);
+  if (j.contains("face_beta")) read_map(j["face_beta"], "face_beta", p.face_beta, number);
+  if (j.contains("point_size")) read_map(j["point_size"], "point_size", p.point_size, user_size);
+  if (j.contains("curve_size")) read_map(j["curve_size"], "curve_size", p.curve_size, user_size);
+  if (j.contains("face_size")) read_map(j["face_size"], "face_size", p.face_size, user_size);
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,42 @@
+// User controls of the size map (paper 3.4): global phi_c, mu_d, beta, h_min,
+// h_max; local phi_c per curve or face; local mu_d and beta per face; a
+// prescribed size (number or expression of x, y, z) per point, curve or face.
+#pragma once
+
+#include <map>
+#include <string>
+
+namespace sizemesh {
+
+// A prescribed size: a number, or a muparser expression of x, y, z.
+struct UserSize {
+  double value = 0;
+  std::string expression;  // used when not empty
+};
+
+struct SizingParams {
+  double phi_c_deg = 5.0;   // curvature: central angle per element (degrees)
+  double mu_d = 2.0;        // proximity: elements across a proximity distance
+  double beta = 1.2;        // gradation: growth factor per element
+  double h_min = 0;         // 0: h_min_rel * bounding-box diagonal
+  double h_max = 0;         // 0: h_max_rel * bounding-box diagonal
+  double h_min_rel = 1e-4;
+  double h_max_rel = 0.05;
+  bool local_proximity = true;  // thin gaps between faces (beyond the paper)
+  std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
+  std::map<int, UserSize> point_size, curve_size, face_size;
+
+  // Absolute bounds for a model of this bounding-box diagonal.
+  double resolved_h_min(double diagonal) const { return h_min > 0 ? h_min : h_min_rel * diagonal; }
+  double resolved_h_max(double diagonal) const { return h_max > 0 ? h_max : h_max_rel * diagonal; }
+};
+
+// Throws Error (one sentence) on values outside their domain or ids the model
+// does not have. Counts are the model's numbers of points, curves and faces.
+void validate(const SizingParams& p, double diagonal, int points, int curves, int faces);
+
+// Reads a JSON config into p (keys absent from the file keep p's values).
+// Throws Error on unreadable or malformed files and unknown keys.
+void read_config(const std::string& path, SizingParams& p);
+
+}  // namespace sizemesh

@@ -1,0 +1,25 @@
+#include "src/info.h"
+
+#include <iomanip>
+
+namespace sizemesh {
+
+void print_info(const Model& model, std::ostream& out) {
+  const ModelInfo& i = model.info();
+  out << "file:        " << i.path << " (" << i.format << ")\n"
+      << "unit:        " << i.unit << "\n"
+      << std::setprecision(6) << "bounding box: [" << i.bbox_min.x() << ", " << i.bbox_min.y() << ", "
+      << i.bbox_min.z() << "] - [" << i.bbox_max.x() << ", " << i.bbox_max.y() << ", " << i.bbox_max.z()
+      << "], diagonal " << i.diagonal() << "\n"
+      << "solids:      " << i.solids << "\n"
+      << "shells:      " << i.shells << "\n"
+      << "faces:       " << i.faces;
+  if (i.faces != i.faces_before_sewing) out << " (" << i.faces_before_sewing << " before sewing)";
+  out << "\n"
+      << "curves:      " << i.curves << "\n"
+      << "points:      " << i.points << "\n"
+      << "free curves: " << i.free_curves_before_sewing << " before sewing, " << i.free_curves_after_sewing
+      << " after" << (i.sewn ? "" : " (not sewn)") << "\n";
+}
+
+}  // namespace sizemesh

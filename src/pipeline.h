@@ -1,0 +1,26 @@
+// The paper's flow from CAD file to mesh, one named step after another.
+#pragma once
+
+#include <string>
+
+#include "geometry/background_mesh.h"
+#include "geometry/model.h"
+
+namespace sizemesh {
+
+struct RunOptions {
+  std::string input;
+  std::string output;       // mesh (.vtu); empty: none
+  std::string background;   // background mesh with size fields (.vtu); empty: none
+  LoadOptions load;
+  BackgroundOptions tessellation;
+  bool verbose = true;
+};
+
+// Exit codes of the sizemesh command.
+enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kPartial = 3 };
+
+// Runs the whole pipeline; throws Error on bad input. Returns the exit code.
+int run(const RunOptions& options);
+
+}  // namespace sizemesh
