@@ -21,6 +21,7 @@
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <ShapeBuild_ReShape.hxx>
 
 #include <cmath>
 
@@ -161,6 +162,23 @@ OcctCurve make_curve_data(const TopoDS_Edge& edge_any, const TopoDS_Shape& shape
   return d;
 }
 
+// Faces of zero area (caps collapsed to a line or point) cannot carry a mesh.
+TopoDS_Shape remove_zero_area_faces(const TopoDS_Shape& shape, double diagonal, int& removed) {
+  Handle(ShapeBuild_ReShape) reshape = new ShapeBuild_ReShape;
+  removed = 0;
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  for (int i = 1; i <= faces.Extent(); ++i) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(faces(i), props);
+    if (std::abs(props.Mass()) <= 1e-14 * diagonal * diagonal) {
+      reshape->Remove(faces(i));
+      ++removed;
+    }
+  }
+  return removed ? reshape->Apply(shape) : shape;
+}
+
 }  // namespace
 
 Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOptions& options,
@@ -186,6 +204,7 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
       info.sewn = true;
     }
   }
+  shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed);
   info.free_curves_after_sewing = count_free_curves(shape);
   bbox_diagonal(shape, info.bbox_min, info.bbox_max);
 

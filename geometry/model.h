@@ -22,6 +22,7 @@ struct ModelInfo {
   Vec3 bbox_min, bbox_max;
   int solids = 0, shells = 0, faces = 0, curves = 0, points = 0;
   int faces_before_sewing = 0;   // sewing drops faces degenerate at its tolerance
+  int zero_area_faces_removed = 0;  // collapsed faces that cannot carry a mesh
   int free_curves_before_sewing = 0;
   int free_curves_after_sewing = 0;
   bool sewn = false;       // sewing was run

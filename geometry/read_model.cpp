@@ -1,4 +1,5 @@
 // Reading STEP, IGES and BREP files into a Model (format by content, then extension).
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <IGESControl_Reader.hxx>
@@ -13,6 +14,7 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TopExp_Explorer.hxx>
+#include <UnitsMethods.hxx>
 #include <TopoDS.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -89,6 +91,21 @@ std::pair<std::string, std::string> step_unit(const std::string& name) {
   return {"mm", "MM"};
 }
 
+// Makes the translator produce lengths in the file's own unit. Both the static
+// and the kernel's global unit are set before every transfer: a previous read
+// may have left either one changed.
+double unit_in_mm(const std::string& translator_name) {
+  static const std::map<std::string, double> mm = {{"UM", 1e-3}, {"MM", 1.0},      {"CM", 10.0},  {"M", 1000.0},
+                                                   {"KM", 1e6},  {"INCH", 25.4}, {"FT", 304.8}, {"MI", 1609344.0},
+                                                   {"MIL", 0.0254}, {"UIN", 2.54e-5}};
+  return mm.at(translator_name);
+}
+
+void set_target_unit(const std::string& translator_name) {
+  Interface_Static::SetCVal("xstep.cascade.unit", translator_name.c_str());
+  UnitsMethods::SetCasCadeLengthUnit(unit_in_mm(translator_name));
+}
+
 // IGES global-section unit flag to (display name, translator name).
 std::pair<std::string, std::string> iges_unit(int flag) {
   switch (flag) {
@@ -114,7 +131,7 @@ TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
   reader.FileUnits(length_units, angle_units, solid_angle_units);
   auto unit = step_unit(length_units.IsEmpty() ? "MILLIMETRE" : length_units.First().ToCString());
   info.unit = unit.first;
-  Interface_Static::SetCVal("xstep.cascade.unit", unit.second.c_str());
+  set_target_unit(unit.second);
   if (reader.NbRootsForTransfer() == 0) throw Error("STEP file '" + path + "' contains no geometry");
   reader.TransferRoots();
   TopoDS_Shape shape = reader.OneShape();
@@ -132,16 +149,23 @@ TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
   return shape;
 }
 
+// The IGES reader fixes its length scale when it parses the file, so the file
+// is read in millimetres and scaled to its own unit afterwards.
 TopoDS_Shape read_iges(const std::string& path, ModelInfo& info) {
+  set_target_unit("MM");
   IGESControl_Reader reader;
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw Error("cannot parse IGES file '" + path + "' (truncated or malformed)");
   auto unit = iges_unit(reader.IGESModel()->GlobalSection().UnitFlag());
   info.unit = unit.first;
-  Interface_Static::SetCVal("xstep.cascade.unit", unit.second.c_str());
   if (reader.NbRootsForTransfer() == 0) throw Error("IGES file '" + path + "' contains no geometry");
   reader.TransferRoots();
-  return reader.OneShape();
+  TopoDS_Shape shape = reader.OneShape();
+  const double scale = 1.0 / unit_in_mm(unit.second);
+  if (scale == 1.0 || shape.IsNull()) return shape;
+  gp_Trsf trsf;
+  trsf.SetScale(gp_Pnt(0, 0, 0), scale);
+  return BRepBuilderAPI_Transform(shape, trsf, true).Shape();
 }
 
 TopoDS_Shape read_brep(const std::string& path, ModelInfo& info) {

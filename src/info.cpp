@@ -15,6 +15,7 @@ void print_info(const Model& model, std::ostream& out) {
       << "shells:      " << i.shells << "\n"
       << "faces:       " << i.faces;
   if (i.faces != i.faces_before_sewing) out << " (" << i.faces_before_sewing << " before sewing)";
+  if (i.zero_area_faces_removed) out << ", " << i.zero_area_faces_removed << " faces of zero area removed";
   out << "\n"
       << "curves:      " << i.curves << "\n"
       << "points:      " << i.points << "\n"
