@@ -6,6 +6,21 @@
 #include "src/info.h"
 #include "src/pipeline.h"
 
+namespace {
+// CLI11's own range check prints the whole double range; say it plainly.
+const auto positive = CLI::Validator(
+    [](std::string& s) -> std::string {
+      try {
+        size_t pos = 0;
+        const double v = std::stod(s, &pos);
+        if (pos == s.size() && v > 0 && v < 1e300) return {};
+      } catch (...) {
+      }
+      return "must be a positive number, got '" + s + "'";
+    },
+    "POSITIVE");
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace sizemesh;
   RunOptions o;
@@ -20,10 +35,10 @@ int main(int argc, char** argv) {
   app.add_flag("--info", info_only, "print what was loaded (unit, bounding box, entity counts, free curves) and exit");
   app.add_flag("!--no-sew", o.load.sew, "do not sew faces that touch");
   app.add_option("--sew-tolerance", o.load.sewing_tolerance_rel, "sewing tolerance relative to the bounding-box diagonal")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(positive);
   app.add_option("--deflection", o.tessellation.deflection_rel,
                  "background tessellation: chordal deflection relative to the bounding-box diagonal")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(positive);
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
   app.add_flag("-q,--quiet", [&](int64_t) { o.verbose = false; }, "print nothing but errors");

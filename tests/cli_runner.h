@@ -1,0 +1,44 @@
+// Runs the sizemesh command in a shell and captures exit status and output.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace sizemesh::test {
+
+struct CommandResult {
+  int status = -1;       // exit status; -1 when killed by a signal
+  std::string out, err;  // standard output and error
+  int err_lines() const {
+    int n = 0;
+    for (char c : err) n += c == '\n';
+    return n;
+  }
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline CommandResult run_sizemesh(const std::string& args) {
+  static int counter = 0;
+  const std::string base = "/tmp/sizemesh_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string cmd = std::string(SIZEMESH_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
+  const int raw = std::system(cmd.c_str());
+  CommandResult r;
+  if (WIFEXITED(raw)) r.status = WEXITSTATUS(raw);
+  r.out = slurp(base + ".out");
+  r.err = slurp(base + ".err");
+  std::remove((base + ".out").c_str());
+  std::remove((base + ".err").c_str());
+  return r;
+}
+
+}  // namespace sizemesh::test

@@ -1,0 +1,95 @@
+// The sizemesh command: help, version, info, and one clear error line for bad input.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "tests/cli_runner.h"
+#include "tests/test_models.h"
+
+using namespace sizemesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A scratch directory with the bad files the command must refuse.
+struct BadFiles {
+  fs::path dir = fs::temp_directory_path() / ("sizemesh_bad_" + std::to_string(::getpid()));
+  BadFiles() {
+    fs::create_directories(dir);
+    std::ofstream(dir / "empty.step").close();
+    std::ofstream(dir / "not_cad.step") << "This is a plain text file, not a CAD model.\n";
+    std::ofstream(dir / "not_cad.xyz") << "1 2 3\n4 5 6\n";
+    std::ofstream(dir / "no_geometry.stp")
+        << "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+           "FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\n"
+           "END-ISO-10303-21;\n";
+    const std::string wing = test::slurp(test::model_path("onera_m6_wing.stp"));
+    std::ofstream(dir / "truncated.stp") << wing.substr(0, wing.size() / 2);
+    const std::string fuselage = test::slurp(test::model_path("d150_fuselage.igs"));
+    std::ofstream(dir / "truncated.igs") << fuselage.substr(0, 2000);
+  }
+  ~BadFiles() { fs::remove_all(dir); }
+  std::string operator()(const std::string& name) const { return (dir / name).string(); }
+};
+
+void expect_one_error(const test::CommandResult& r, const std::string& words) {
+  INFO(r.err);
+  CHECK(r.status >= 1);
+  CHECK(r.status <= 3);
+  CHECK(r.err_lines() == 1);
+  CHECK(r.err.rfind("sizemesh: error: ", 0) == 0);
+  CHECK(r.err.find(words) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("bad input gives one clear error line and a non-zero exit") {
+  BadFiles bad;
+  const std::string wing = test::model_path("onera_m6_wing.stp");
+  expect_one_error(test::run_sizemesh(bad("missing.step")), "no such file");
+  expect_one_error(test::run_sizemesh(bad.dir.string()), "is a directory");
+  expect_one_error(test::run_sizemesh(bad("empty.step")), "is empty");
+  expect_one_error(test::run_sizemesh(bad("not_cad.step")), "does not look like a STEP file");
+  expect_one_error(test::run_sizemesh(bad("not_cad.xyz")), "unknown extension");
+  expect_one_error(test::run_sizemesh(bad("truncated.stp")), "truncated or malformed");
+  expect_one_error(test::run_sizemesh(bad("truncated.igs")), "no surfaces");
+  expect_one_error(test::run_sizemesh(bad("no_geometry.stp")), "contains no geometry");
+  expect_one_error(test::run_sizemesh(wing + " -o /nonexistent_dir/mesh.vtu"), "cannot write");
+  expect_one_error(test::run_sizemesh(wing + " -o " + bad.dir.string()), "is a directory");
+  expect_one_error(test::run_sizemesh(wing + " --deflection -1"), "positive");
+  expect_one_error(test::run_sizemesh(wing + " --no-such-option"), "no-such-option");
+  expect_one_error(test::run_sizemesh(""), "model is required");
+}
+
+TEST_CASE("--help documents every option and --version prints the version") {
+  const auto help = test::run_sizemesh("--help");
+  CHECK(help.status == 0);
+  for (const char* opt : {"--output", "--background", "--info", "--no-sew", "--sew-tolerance", "--deflection",
+                          "--angle", "--version", "--quiet"})
+    CHECK(help.out.find(opt) != std::string::npos);
+  const auto version = test::run_sizemesh("--version");
+  CHECK(version.status == 0);
+  CHECK(version.out.rfind("sizemesh ", 0) == 0);
+}
+
+TEST_CASE("--info reports unit, bounding box, counts and free curves") {
+  const auto r = test::run_sizemesh("--info " + test::model_path("f16_openvsp.stp"));
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("unit:        ft") != std::string::npos);
+  CHECK(r.out.find("free curves: 212 before sewing, 24 after") != std::string::npos);
+  CHECK(r.out.find("bounding box") != std::string::npos);
+  for (const char* key : {"solids:", "shells:", "faces:", "curves:", "points:"}) CHECK(r.out.find(key) != std::string::npos);
+}
+
+TEST_CASE("the background mesh is written as .vtu with classification fields") {
+  const std::string out = (fs::temp_directory_path() / ("sizemesh_bg_" + std::to_string(::getpid()) + ".vtu")).string();
+  const auto r = test::run_sizemesh(test::model_path("cone70_capsule_sting.step") + " -q --background " + out);
+  REQUIRE(r.status == 0);
+  const std::string vtu = test::slurp(out);
+  CHECK(vtu.find("UnstructuredGrid") != std::string::npos);
+  CHECK(vtu.find("classification_dim") != std::string::npos);
+  CHECK(vtu.find("classification_id") != std::string::npos);
+  CHECK(vtu.find("face_id") != std::string::npos);
+  fs::remove(out);
+}
