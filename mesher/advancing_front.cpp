@@ -1,0 +1,414 @@
+#include "mesher/advancing_front.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <unordered_map>
+
+#include "mesher/geometry2d.h"
+
+namespace sizemesh {
+namespace {
+
+struct FrontEdge {
+  int a, b;
+  bool alive = true;
+  int tries = 0;
+  double key = 0;  // metric length (space chord / h), shortest first
+};
+
+// Uniform grid over the uv box of the boundary; each front edge is listed in
+// every cell its box touches.
+class EdgeGrid {
+ public:
+  void init(const Vec2& lo, const Vec2& hi, int n_edges) {
+    const Vec2 span = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
+    lo_ = lo - 1e-6 * span;
+    const Vec2 span2 = span * (1 + 2e-6);
+    n_ = std::clamp(static_cast<int>(1.5 * std::sqrt(double(n_edges))), 1, 400);
+    cell_ = span2 / n_;
+    cells_.assign(size_t(n_) * n_, {});
+  }
+  void insert(int e, const Vec2& a, const Vec2& b) {
+    int i0, j0, i1, j1;
+    range(a.cwiseMin(b), a.cwiseMax(b), i0, j0, i1, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) cells_[size_t(j) * n_ + i].push_back(e);
+  }
+  template <class F>
+  void query(const Vec2& lo, const Vec2& hi, F&& f) const {
+    int i0, j0, i1, j1;
+    range(lo, hi, i0, j0, i1, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        for (int e : cells_[size_t(j) * n_ + i]) f(e);
+  }
+
+ private:
+  void range(const Vec2& lo, const Vec2& hi, int& i0, int& j0, int& i1, int& j1) const {
+    auto ci = [&](double x, int d) {
+      const double c = (x - lo_[d]) / cell_[d];
+      if (!(c > 0)) return 0;
+      return static_cast<int>(std::min<double>(c, n_ - 1));
+    };
+    i0 = ci(lo.x(), 0);
+    j0 = ci(lo.y(), 1);
+    i1 = ci(hi.x(), 0);
+    j1 = ci(hi.y(), 1);
+  }
+  Vec2 lo_, cell_;
+  int n_ = 1;
+  std::vector<std::vector<int>> cells_;
+};
+
+// How demanding a try at an edge is; later tries accept worse triangles.
+struct Level {
+  double q_min;      // accept the first candidate at least this good
+  double cos_min;    // triangle normal against the surface normal
+  double near_new;   // a new point keeps this metric distance (in s) from the front
+  double radius;     // candidates within this metric distance (in s) of the ideal point
+  bool take_best;    // if none reaches q_min, take the best valid one
+};
+constexpr Level kLevels[] = {
+    {0.45, 0.5, 0.5, 1.5, false},
+    {0.45, 0.5, 0.5, 1.5, false},
+    {0.30, 0.3, 0.4, 2.0, true},
+    {0.30, 0.3, 0.4, 2.0, true},
+    {0.0, 0.05, 0.25, 4.0, true},
+    {0.0, 0.0, 0.15, 8.0, true},
+};
+constexpr int kMaxTries = sizeof(kLevels) / sizeof(kLevels[0]);
+
+class Front {
+ public:
+  Front(FaceMesh& fm, FaceSurface& fs) : fm_(fm), fs_(fs) {}
+
+  FrontResult run() {
+    FrontResult r;
+    int n_edges = 0;
+    Vec2 lo = fm_.uv[0], hi = fm_.uv[0];
+    for (const auto& loop : fm_.loops) {
+      n_edges += static_cast<int>(loop.size());
+      for (int i : loop) {
+        lo = lo.cwiseMin(fm_.uv[i]);
+        hi = hi.cwiseMax(fm_.uv[i]);
+      }
+    }
+    lo_ = lo;
+    hi_ = hi;
+    grid_.init(lo, hi, n_edges);
+    for (const auto& loop : fm_.loops)
+      for (size_t i = 0; i < loop.size(); ++i) add_edge(loop[i], loop[(i + 1) % loop.size()]);
+
+    long long failed = 0;
+    const long long max_failed = 20LL * n_edges + 2000;
+    const size_t max_tris = 20000000;
+    while (!heap_.empty()) {
+      const auto [key, ei] = heap_.top();
+      heap_.pop();
+      FrontEdge& e = edges_[ei];
+      if (!e.alive || e.key != key) continue;
+      if (advance(ei, kLevels[e.tries])) continue;
+      ++failed;
+      FrontEdge& e2 = edges_[ei];
+      if (++e2.tries >= kMaxTries) {
+        r.reason = "front could not advance from an edge after " + std::to_string(kMaxTries) +
+                   " tries (" + std::to_string(alive_) + " front edges left)";
+        r.fronts_3d = fronts_3d_;
+        return r;
+      }
+      e2.key += 1.0 + e2.tries;  // try the rest of the front first
+      heap_.push({e2.key, ei});
+      if (failed > max_failed || fm_.tris.size() > max_tris) {
+        r.reason = "advancing front hit its iteration cap (" + std::to_string(alive_) +
+                   " front edges left)";
+        r.fronts_3d = fronts_3d_;
+        return r;
+      }
+    }
+    r.ok = alive_ == 0;
+    if (!r.ok) r.reason = "front left open";
+    r.fronts_3d = fronts_3d_;
+    return r;
+  }
+
+ private:
+  static uint64_t code(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
+
+  bool pole_pair(int a, int b) const {
+    return fm_.pole[a] && fm_.pole[b] && fm_.global[a] == fm_.global[b];
+  }
+
+  void add_edge(int a, int b) {
+    FrontEdge e;
+    e.a = a;
+    e.b = b;
+    const double ha = fm_.s[a].h, hb = fm_.s[b].h;
+    e.key = pole_pair(a, b) ? 0.0 : (fm_.s[b].p - fm_.s[a].p).norm() / (0.5 * (ha + hb));
+    const int id = static_cast<int>(edges_.size());
+    edges_.push_back(e);
+    stamp_.push_back(0);
+    map_[code(a, b)] = id;
+    grid_.insert(id, fm_.uv[a], fm_.uv[b]);
+    heap_.push({e.key, id});
+    ++alive_;
+  }
+  void kill_edge(int id) {
+    edges_[id].alive = false;
+    map_.erase(code(edges_[id].a, edges_[id].b));
+    --alive_;
+  }
+  int find_edge(int a, int b) const {
+    auto it = map_.find(code(a, b));
+    return it == map_.end() ? -1 : it->second;
+  }
+
+  // A candidate apex: an existing node (id >= 0) or a new point (uv, sample).
+  struct Candidate {
+    int node = -1;
+    Vec2 uv;
+    SurfaceSample s;
+    double rank = 0;  // metric distance to the ideal point (in s)
+    bool in_space = false;  // placed by the space procedure
+  };
+
+  // Validity of triangle (a, b, c) against the front, in uv and in space.
+  // Returns the shape quality, or -1 when invalid.
+  double check(int a, int b, const Candidate& c, const Level& lv) {
+    const Vec2& ua = fm_.uv[a];
+    const Vec2& ub = fm_.uv[b];
+    const Vec2& uc = c.uv;
+    const double o = orient(ua, ub, uc);
+    const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
+    if (!(o > 1e-10 * scale)) return -1;
+    // New edges must cross no front edge.
+    const bool new_ac = c.node < 0 || find_edge(c.node, a) < 0;
+    const bool new_cb = c.node < 0 || find_edge(b, c.node) < 0;
+    for (int ei : near_edges_) {
+      const FrontEdge& e = edges_[ei];
+      if (!e.alive) continue;
+      const Vec2& p = fm_.uv[e.a];
+      const Vec2& q = fm_.uv[e.b];
+      if (new_ac && e.a != a && e.b != a && e.a != c.node && e.b != c.node &&
+          segments_meet(ua, uc, p, q))
+        return -1;
+      if (new_cb && e.a != b && e.b != b && e.a != c.node && e.b != c.node &&
+          segments_meet(uc, ub, p, q))
+        return -1;
+    }
+    // No front node inside or on the triangle.
+    const double tol = -1e-10 * o;
+    for (int k : near_nodes_) {
+      if (k == a || k == b || k == c.node) continue;
+      const Vec2& uk = fm_.uv[k];
+      if (orient(ua, ub, uk) >= tol && orient(ub, uc, uk) >= tol && orient(uc, ua, uk) >= tol)
+        return -1;
+    }
+    // Space: the triangle faces the way of the surface normal (Tremel procedure 2).
+    const bool pole_tri = pole_pair(a, b) || (c.node >= 0 && (pole_pair(b, c.node) || pole_pair(c.node, a)));
+    if (pole_tri) return 0.8;
+    const Vec3& pa = fm_.s[a].p;
+    const Vec3& pb = fm_.s[b].p;
+    const Vec3& pc = c.s.p;
+    const Vec3 nt = (pb - pa).cross(pc - pa);
+    const Vec3 ns = fm_.s[a].n + fm_.s[b].n + c.s.n;
+    const double lt = nt.norm(), ls = ns.norm();
+    if (!(lt > 0)) return -1;
+    if (ls > 0 && nt.dot(ns) <= lv.cos_min * lt * ls) return -1;
+    const double q = triangle_quality(pa, pb, pc);
+    return q > 1e-6 ? q : -1;
+  }
+
+  // Metric distance (in M) from a new point to the nearby front.
+  bool clear_of_front(const Vec2& p, const Eigen::Matrix2d& M, double min_dist) const {
+    const double d2 = min_dist * min_dist;
+    for (int k : near_nodes_) {
+      const Vec2 d = fm_.uv[k] - p;
+      if (d.dot(M * d) < d2) return false;
+    }
+    for (int ei : near_edges_) {
+      const FrontEdge& e = edges_[ei];
+      if (!e.alive) continue;
+      const Vec2& q0 = fm_.uv[e.a];
+      const Vec2 dq = fm_.uv[e.b] - q0;
+      const double l2 = dq.dot(M * dq);
+      double t = l2 > 0 ? (p - q0).dot(M * dq) / l2 : 0;
+      t = std::clamp(t, 0.0, 1.0);
+      const Vec2 d = q0 + t * dq - p;
+      if (d.dot(M * d) < 0.49 * d2) return false;
+    }
+    return true;
+  }
+
+  // One step of the front at edge ei (paper 4.1): ideal point, candidates, best triangle.
+  bool advance(int ei, const Level& lv) {
+    const int a = edges_[ei].a, b = edges_[ei].b;
+    const Vec2 ua = fm_.uv[a], ub = fm_.uv[b];
+    const Vec2 e = ub - ua;
+    const Vec2 m = 0.5 * (ua + ub);
+    const SurfaceSample sm = fs_.eval(m);
+    const Eigen::Matrix2d Mm = sm.metric();
+    const bool pole_edge = pole_pair(a, b);
+    const Vec2 perp(-e.y(), e.x());
+
+    // Ideal point in uv: equilateral in the metric, side s (unit, bounded by the edge's length).
+    const double L = pole_edge ? 0.0 : std::sqrt(e.dot(Mm * e));
+    const double s = pole_edge ? 1.0 : std::min(std::max(1.0, 0.55 * L), 2.0 * L);
+    const double height = pole_edge ? 1.0 : std::sqrt(std::max(s * s - 0.25 * L * L, 0.05 * s * s));
+    Vec2 d = pole_edge ? perp : Vec2(Mm.inverse() * perp);
+    const double dl = std::sqrt(std::max(d.dot(Mm * d), 1e-300));
+    d /= dl;
+    Candidate ideal;
+    ideal.uv = m + height * d;
+    ideal.s = fs_.eval(ideal.uv);
+    const Eigen::Matrix2d Mp = ideal.s.metric();
+    const Eigen::Matrix2d M = pole_edge ? Mp : Eigen::Matrix2d(0.5 * (Mm + Mp));
+
+    // Nearby front: a box holding the metric ball of radius lv.radius * s around the ideal point.
+    const double r = lv.radius * s;
+    const Eigen::Matrix2d Minv = M.inverse();
+    Vec2 half(r * std::sqrt(std::max(Minv(0, 0), 0.0)), r * std::sqrt(std::max(Minv(1, 1), 0.0)));
+    const Vec2 span = hi_ - lo_;
+    half = half.cwiseMin(span);
+    Vec2 blo = ideal.uv - half, bhi = ideal.uv + half;
+    blo = blo.cwiseMin(ua).cwiseMin(ub);
+    bhi = bhi.cwiseMax(ua).cwiseMax(ub);
+    if (!std::isfinite(blo.x()) || !std::isfinite(blo.y()) || !std::isfinite(bhi.x()) ||
+        !std::isfinite(bhi.y())) {
+      blo = lo_;
+      bhi = hi_;
+    }
+    gather(blo, bhi);
+    // New points: the uv ideal point, and when it is poor the one placed in space.
+    const double new_rank = 0.55;
+    const bool ideal_ok = std::isfinite(ideal.uv.x()) && std::isfinite(ideal.uv.y());
+    const double q_ideal = ideal_ok ? check(a, b, ideal, lv) : -1;
+    Candidate c3;
+    bool have_3d = false;
+    if (!pole_edge && q_ideal < 0.6 && ideal_in_space(a, b, m, sm, s, ideal_ok ? ideal.uv : m, c3)) {
+      have_3d = true;
+      c3.in_space = true;
+      c3.rank = new_rank + (q_ideal >= 0 ? 1e-9 : -1e-9);
+      if (c3.uv.x() < blo.x() || c3.uv.y() < blo.y() || c3.uv.x() > bhi.x() || c3.uv.y() > bhi.y())
+        gather(blo.cwiseMin(c3.uv), bhi.cwiseMax(c3.uv));
+    }
+
+    std::vector<Candidate> cands;
+    for (int k : near_nodes_) {
+      if (k == a || k == b) continue;
+      if (orient(ua, ub, fm_.uv[k]) <= 0) continue;
+      const Vec2 dk = fm_.uv[k] - ideal.uv;
+      const double dist = std::sqrt(std::max(dk.dot(M * dk), 0.0)) / s;
+      if (dist > lv.radius) continue;
+      Candidate c;
+      c.node = k;
+      c.uv = fm_.uv[k];
+      c.s = fm_.s[k];
+      c.rank = dist;
+      cands.push_back(c);
+    }
+    if (ideal_ok && clear_of_front(ideal.uv, M, lv.near_new * s)) {
+      ideal.rank = new_rank;
+      cands.push_back(ideal);
+    }
+    if (have_3d && clear_of_front(c3.uv, M, lv.near_new * s)) cands.push_back(c3);
+    std::stable_sort(cands.begin(), cands.end(),
+                     [](const Candidate& x, const Candidate& y) { return x.rank < y.rank; });
+
+    int best = -1;
+    double best_q = -1;
+    for (size_t i = 0; i < cands.size(); ++i) {
+      const double q = check(a, b, cands[i], lv);
+      if (q < 0) continue;
+      if (q >= lv.q_min) {
+        best = static_cast<int>(i);
+        best_q = q;
+        break;
+      }
+      if (lv.take_best && q > best_q) {
+        best_q = q;
+        best = static_cast<int>(i);
+      }
+    }
+    if (best < 0) return false;
+    if (best_q < lv.q_min && !lv.take_best) return false;
+    Candidate& c = cands[best];
+    int cn = c.node;
+    if (cn < 0) {
+      cn = fm_.add_node(c.uv, c.s, -1);
+      if (c.in_space) ++fronts_3d_;
+    }
+    fm_.tris.push_back({a, b, cn});
+    kill_edge(ei);
+    const int ca = find_edge(cn, a);
+    if (ca >= 0) kill_edge(ca); else add_edge(a, cn);
+    const int bc = find_edge(b, cn);
+    if (bc >= 0) kill_edge(bc); else add_edge(cn, b);
+    return true;
+  }
+
+  // Tremel procedure 1: ideal point placed in space off the edge's midpoint,
+  // along the surface, then projected onto the surface.
+  bool ideal_in_space(int a, int b, const Vec2& m, const SurfaceSample& sm, double s, const Vec2& guess,
+                      Candidate& out) {
+    const Vec3& pa = fm_.s[a].p;
+    const Vec3& pb = fm_.s[b].p;
+    const Vec3 ab = pb - pa;
+    if (sm.n.norm() == 0 || ab.norm() == 0) return false;
+    Vec3 t = sm.n.cross(ab);
+    if (t.norm() == 0) return false;
+    t.normalize();
+    const double side = s * sm.h;
+    const double height = std::sqrt(std::max(side * side - 0.25 * ab.squaredNorm(), 0.05 * side * side));
+    const Vec3 target = 0.5 * (pa + pb) + height * t;
+    Vec2 uv = std::isfinite(guess.x()) && std::isfinite(guess.y()) ? guess : m;
+    if (!fs_.project(target, uv)) return false;
+    out.uv = uv;
+    out.s = fs_.eval(uv);
+    out.node = -1;
+    return (out.s.p - target).norm() <= 0.5 * height;
+  }
+
+  // Alive front edges and their nodes with boxes meeting [lo, hi].
+  void gather(const Vec2& lo, const Vec2& hi) {
+    ++visit_;
+    near_edges_.clear();
+    near_nodes_.clear();
+    grid_.query(lo, hi, [&](int e) {
+      if (stamp_[e] == visit_ || !edges_[e].alive) return;
+      stamp_[e] = visit_;
+      near_edges_.push_back(e);
+    });
+    if (node_stamp_.size() < fm_.uv.size()) node_stamp_.resize(fm_.uv.size() + 1024, 0);
+    for (int ei : near_edges_)
+      for (int k : {edges_[ei].a, edges_[ei].b})
+        if (node_stamp_[k] != visit_) {
+          node_stamp_[k] = visit_;
+          near_nodes_.push_back(k);
+        }
+  }
+
+  FaceMesh& fm_;
+  FaceSurface& fs_;
+  std::vector<FrontEdge> edges_;
+  std::vector<unsigned> stamp_, node_stamp_;
+  unsigned visit_ = 0;
+  std::unordered_map<uint64_t, int> map_;
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap_;
+  EdgeGrid grid_;
+  Vec2 lo_, hi_;
+  int alive_ = 0;
+  int fronts_3d_ = 0;
+  std::vector<int> near_edges_, near_nodes_;
+};
+
+}  // namespace
+
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs) {
+  Front front(fm, fs);
+  return front.run();
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,27 @@
+// Advancing-front triangulation of one face in its uv domain under the metric
+// M = J^T J / h^2 (paper 4.1), with Tremel's two robustness procedures used
+// adaptively: the ideal point is placed in uv and, only when that gives a poor
+// triangle, placed in space and projected onto the surface; every triangle is
+// also checked in space (normal agrees with the surface, shape).
+//
+// Input:  fm with boundary nodes and loops (face_boundary()), fs its sampler.
+// Output: fm.tris (counter-clockwise in uv) and the nodes created inside the
+//         face; FrontResult says whether the front closed and, if not, why.
+// Terminates on every input: failed attempts are capped.
+#pragma once
+
+#include <string>
+
+#include "mesher/face_mesh.h"
+
+namespace sizemesh {
+
+struct FrontResult {
+  bool ok = false;
+  std::string reason;
+  int fronts_3d = 0;  // ideal points computed in space (Tremel procedure 1)
+};
+
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs);
+
+}  // namespace sizemesh

@@ -1,0 +1,158 @@
+#include "mesher/discretise_curves.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace sizemesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Most a single segment may turn: keeps loops valid in uv when h exceeds a curve's radius.
+constexpr double kMaxTurnPerSegment = kPi / 3;
+
+// Integral of ds/h along a curve sampled at m+1 parameters (trapezoid on chords).
+struct Sampled {
+  std::vector<double> t, F;  // F[k] = metric length from t0 to t[k]
+  double turning = 0;        // total tangent turning (radians)
+};
+
+Sampled sample_curve(const Geometry& g, const SizeFunction& h, int curve, int face, int m,
+                     long long& queries) {
+  double t0, t1;
+  g.curve_range(curve, t0, t1);
+  Sampled s;
+  s.t.resize(m + 1);
+  s.F.assign(m + 1, 0.0);
+  std::vector<Vec3> p(m + 1);
+  std::vector<double> hs(m + 1);
+  int hint = -1;
+  for (int k = 0; k <= m; ++k) {
+    s.t[k] = t0 + (t1 - t0) * k / m;
+    p[k] = g.eval_curve(curve, s.t[k]);
+    double hk = 0;
+    if (face > 0) {
+      try {
+        hk = h.at(face, g.eval_pcurve(curve, face, 0, s.t[k]), hint);
+      } catch (const std::exception&) {
+        hk = 0;
+      }
+    }
+    if (!(hk > 0)) hk = h.at_xyz(p[k]);
+    ++queries;
+    hs[k] = hk;
+  }
+  for (int k = 1; k <= m; ++k) {
+    const double ds = (p[k] - p[k - 1]).norm();
+    s.F[k] = s.F[k - 1] + 0.5 * ds * (1.0 / hs[k - 1] + 1.0 / hs[k]);  // Eq. 1a
+  }
+  Vec3 prev = Vec3::Zero();
+  for (int k = 1; k <= m; ++k) {
+    Vec3 d = p[k] - p[k - 1];
+    if (d.norm() <= 0) continue;
+    d.normalize();
+    if (prev.norm() > 0) s.turning += std::acos(std::clamp(prev.dot(d), -1.0, 1.0));
+    prev = d;
+  }
+  return s;
+}
+
+// Parameters at equal steps of the metric length (Eq. 1b).
+std::vector<double> place_nodes(const Sampled& s, int n) {
+  std::vector<double> t(n + 1);
+  t[0] = s.t.front();
+  t[n] = s.t.back();
+  const double total = s.F.back();
+  size_t k = 1;
+  for (int i = 1; i < n; ++i) {
+    const double target = total * i / n;
+    while (k + 1 < s.F.size() && s.F[k] < target) ++k;
+    const double f0 = s.F[k - 1], f1 = s.F[k];
+    const double a = f1 > f0 ? (target - f0) / (f1 - f0) : 0.5;
+    t[i] = s.t[k - 1] + a * (s.t[k] - s.t[k - 1]);
+  }
+  return t;
+}
+
+}  // namespace
+
+CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
+  const int nc = g.num_curves(), np = g.num_points(), nf = g.num_faces();
+  CurveMesh out;
+  out.point_node.assign(np + 1, -1);
+  out.curves.resize(nc + 1);
+  for (int p = 1; p <= np; ++p) {
+    out.point_node[p] = static_cast<int>(out.xyz.size());
+    out.xyz.push_back(g.point_xyz(p));
+    out.node_dim.push_back(0);
+    out.node_entity.push_back(p);
+  }
+
+  // One face per curve to sample h through its pcurve; and every face's loops.
+  std::vector<int> curve_face(nc + 1, 0);
+  std::vector<std::vector<FaceLoop>> loops(nf + 1);
+  for (int f = 1; f <= nf; ++f) {
+    loops[f] = g.face_loops(f);
+    for (const FaceLoop& l : loops[f])
+      for (const CurveUse& u : l)
+        if (curve_face[u.curve] == 0 && u.side == 0) curve_face[u.curve] = f;
+  }
+
+  // Segment counts, Eq. 1a; sampled per curve in parallel.
+  std::vector<int> n(nc + 1, 0);
+  std::vector<Sampled> sampled(nc + 1);
+  std::vector<long long> queries(nc + 1, 0);
+  tbb::parallel_for(1, nc + 1, [&](int c) {
+    if (g.curve_degenerated(c)) return;
+    Sampled coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
+    const int m = std::clamp(static_cast<int>(8 * coarse.F.back()) + 32, 32, 4000);
+    sampled[c] = m > 32 ? sample_curve(g, h, c, curve_face[c], m, queries[c]) : std::move(coarse);
+    int nn = std::max(1, static_cast<int>(std::lround(sampled[c].F.back())));
+    nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
+    if (g.curve_start_point(c) == g.curve_end_point(c)) nn = std::max(nn, 3);
+    n[c] = nn;
+  });
+  for (int c = 1; c <= nc; ++c) out.size_queries += queries[c];
+
+  // Every boundary loop needs at least 3 segments (a seam used twice counts twice).
+  for (int f = 1; f <= nf; ++f)
+    for (const FaceLoop& l : loops[f]) {
+      for (int guard = 0; guard < 8; ++guard) {
+        int total = 0, longest = 0;
+        for (const CurveUse& u : l) {
+          if (g.curve_degenerated(u.curve)) continue;
+          total += n[u.curve];
+          if (longest == 0 || g.curve_length(u.curve) > g.curve_length(longest)) longest = u.curve;
+        }
+        if (total >= 3 || longest == 0) break;
+        ++n[longest];
+      }
+    }
+
+  // End nodes are the B-rep points; a curve without end points gets its own.
+  auto point_or_new = [&](int p, int c, double t) {
+    if (p > 0) return out.point_node[p];
+    out.xyz.push_back(g.eval_curve(c, t));
+    out.node_dim.push_back(1);
+    out.node_entity.push_back(c);
+    return static_cast<int>(out.xyz.size()) - 1;
+  };
+  for (int c = 1; c <= nc; ++c) {
+    if (g.curve_degenerated(c) || n[c] == 0) continue;
+    CurveNodes& cn = out.curves[c];
+    cn.t = place_nodes(sampled[c], n[c]);
+    cn.node.resize(n[c] + 1);
+    cn.node[0] = point_or_new(g.curve_start_point(c), c, cn.t[0]);
+    cn.node[n[c]] = point_or_new(g.curve_end_point(c), c, cn.t[n[c]]);
+    for (int i = 1; i < n[c]; ++i) {
+      cn.node[i] = static_cast<int>(out.xyz.size());
+      out.xyz.push_back(g.eval_curve(c, cn.t[i]));
+      out.node_dim.push_back(1);
+      out.node_entity.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace sizemesh

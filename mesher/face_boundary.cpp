@@ -1,0 +1,158 @@
+#include "mesher/face_boundary.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sizemesh {
+namespace {
+
+struct Entry {
+  int global;
+  Vec2 uv;
+  bool pole;
+};
+
+double signed_area(const std::vector<Entry>& loop) {
+  double a = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec2& p = loop[i].uv;
+    const Vec2& q = loop[(i + 1) % loop.size()].uv;
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * a;
+}
+
+// The nodes of one curve use in loop order, uv from the pcurve.
+std::vector<Entry> use_entries(const Geometry& g, const CurveMesh& cm, int face, const CurveUse& u) {
+  std::vector<Entry> part;
+  if (g.curve_degenerated(u.curve)) {
+    const int p = g.curve_start_point(u.curve);
+    if (p <= 0) return part;
+    double t0, t1;
+    g.curve_range(u.curve, t0, t1);
+    try {
+      part.push_back({cm.point_node[p], g.eval_pcurve(u.curve, face, u.side, t0), true});
+      part.push_back({cm.point_node[p], g.eval_pcurve(u.curve, face, u.side, t1), true});
+    } catch (const std::exception&) {
+      part.clear();  // no pcurve: the gap between its neighbours becomes the pole segment
+    }
+  } else {
+    const CurveNodes& cn = cm.curves[u.curve];
+    if (cn.node.empty())
+      throw Error("curve " + std::to_string(u.curve) + " has no nodes");
+    for (size_t i = 0; i < cn.t.size(); ++i)
+      part.push_back({cn.node[i], g.eval_pcurve(u.curve, face, u.side, cn.t[i]), false});
+  }
+  if (u.reversed) std::reverse(part.begin(), part.end());
+  return part;
+}
+
+}  // namespace
+
+FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) {
+  const int face = fs.face();
+  std::vector<std::vector<Entry>> loops;
+  for (const FaceLoop& fl : g.face_loops(face)) {
+    std::vector<Entry> seq;
+    for (const CurveUse& u : fl) {
+      std::vector<Entry> part = use_entries(g, cm, face, u);
+      if (part.empty()) continue;
+      if (!seq.empty()) {  // pcurves may be given a period apart
+        const Vec2 shift = fs.unwrap(part.front().uv, seq.back().uv) - part.front().uv;
+        for (Entry& e : part) e.uv += shift;
+      }
+      seq.insert(seq.end(), part.begin(), part.end());
+    }
+    if (seq.size() < 2) continue;
+    // Scale of the loop in uv for merge tolerances.
+    Vec2 lo = seq[0].uv, hi = seq[0].uv;
+    for (const Entry& e : seq) {
+      lo = lo.cwiseMin(e.uv);
+      hi = hi.cwiseMax(e.uv);
+    }
+    const double scale = std::max((hi - lo).norm(), 1e-300);
+    // Consecutive entries of one node are merged, unless they are a pole's two ends.
+    std::vector<Entry> loop;
+    auto same_place = [&](const Entry& a, const Entry& b) {
+      const double d = (a.uv - b.uv).norm();
+      return d <= 1e-9 * scale || (!a.pole && !b.pole && d <= 1e-2 * scale);
+    };
+    for (const Entry& e : seq) {
+      if (!loop.empty() && loop.back().global == e.global) {
+        if (same_place(loop.back(), e)) {
+          loop.back().pole = loop.back().pole || e.pole;
+          continue;
+        }
+        loop.back().pole = true;
+        loop.push_back(e);
+        loop.back().pole = true;
+        continue;
+      }
+      loop.push_back(e);
+    }
+    while (loop.size() > 1 && loop.back().global == loop.front().global) {
+      if (same_place(loop.back(), loop.front())) {
+        loop.front().pole = loop.front().pole || loop.back().pole;
+        loop.pop_back();
+      } else {
+        loop.back().pole = loop.front().pole = true;
+        break;
+      }
+    }
+    if (loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  if (loops.empty()) throw Error("face has no boundary loop with 3 or more nodes");
+
+  // Outer loop (largest area) first and counter-clockwise, holes clockwise.
+  size_t outer = 0;
+  for (size_t i = 1; i < loops.size(); ++i)
+    if (std::abs(signed_area(loops[i])) > std::abs(signed_area(loops[outer]))) outer = i;
+  std::swap(loops[0], loops[outer]);
+  for (size_t i = 0; i < loops.size(); ++i) {
+    const double a = signed_area(loops[i]);
+    if ((i == 0 && a < 0) || (i > 0 && a > 0)) std::reverse(loops[i].begin(), loops[i].end());
+  }
+
+  FaceMesh fm;
+  fm.face = face;
+  for (const std::vector<Entry>& loop : loops) {
+    std::vector<int> ids;
+    const int n = static_cast<int>(loop.size());
+    for (int i = 0; i < n; ++i) {
+      const Entry& a = loop[i];
+      SurfaceSample sa = fs.eval(a.uv);
+      sa.p = cm.xyz[a.global];
+      ids.push_back(fm.add_node(a.uv, sa, a.global, a.pole));
+      const Entry& b = loop[(i + 1) % n];
+      if (!(a.pole && b.pole && a.global == b.global)) continue;
+      // Pole segment: split it like the ring of the mesh next to it (one
+      // wanted size away), estimated from the previous node's offset.
+      const Entry& x = loop[(i + n - 1) % n];
+      const Vec2 offset = x.uv - a.uv;
+      const SurfaceSample sx = fs.eval(x.uv);
+      double ring = 0;
+      Vec3 prev = fs.eval(a.uv + offset).p;
+      const int J = 16;
+      for (int j = 1; j <= J; ++j) {
+        const Vec3 q = fs.eval(a.uv + (b.uv - a.uv) * (double(j) / J) + offset).p;
+        ring += (q - prev).norm();
+        prev = q;
+      }
+      // The ring grows about linearly with the distance from the pole, so the
+      // ring one h away has about ring/dist edges of length h.
+      const double dist = (sx.p - sa.p).norm();
+      const double edges = dist > 0 ? ring / dist : ring / std::max(sx.h, 1e-300);
+      const int k = std::clamp(static_cast<int>(std::lround(edges)), 1, 128);
+      for (int j = 1; j < k; ++j) {
+        const Vec2 uv = a.uv + (b.uv - a.uv) * (double(j) / k);
+        SurfaceSample sj = fs.eval(uv);
+        sj.p = cm.xyz[a.global];
+        ids.push_back(fm.add_node(uv, sj, a.global, true));
+      }
+    }
+    fm.loops.push_back(std::move(ids));
+  }
+  return fm;
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,43 @@
+// A face's own mesh in its uv domain, before it joins the global mesh.
+//
+// Nodes carry uv, the surface sample there, and the id of the shared node on a
+// B-rep point or curve (global, -1 for nodes inside the face). A pole (a
+// degenerate curve) appears as several nodes distinct in uv with one global id;
+// triangles on a pole are kept here (valid in uv) and dropped at assembly.
+// Triangles run counter-clockwise in uv: along the surface's natural normal.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mesher/face_surface.h"
+
+namespace sizemesh {
+
+struct FaceMesh {
+  int face = 0;
+  std::vector<Vec2> uv;
+  std::vector<SurfaceSample> s;
+  std::vector<int> global;
+  std::vector<char> pole;
+  std::vector<std::vector<int>> loops;  // boundary, domain on the left; loops[0] outer
+  std::vector<std::array<int, 3>> tris;
+
+  int add_node(const Vec2& p, const SurfaceSample& sample, int global_id, bool is_pole = false) {
+    uv.push_back(p);
+    s.push_back(sample);
+    global.push_back(global_id);
+    pole.push_back(is_pole);
+    return static_cast<int>(uv.size()) - 1;
+  }
+  int num_nodes() const { return static_cast<int>(uv.size()); }
+  bool boundary(int i) const { return global[i] >= 0; }
+  // Two corners on the same pole: zero area in space, dropped at assembly.
+  bool pole_triangle(const std::array<int, 3>& t) const {
+    for (int k = 0; k < 3; ++k)
+      if (global[t[k]] >= 0 && global[t[k]] == global[t[(k + 1) % 3]]) return true;
+    return false;
+  }
+};
+
+}  // namespace sizemesh

@@ -1,0 +1,39 @@
+#include "mesher/face_surface.h"
+
+#include <cmath>
+
+namespace sizemesh {
+
+FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
+    : g_(g), h_(h), face_(face), period_u_(g.face_period_u(face)), period_v_(g.face_period_v(face)) {}
+
+SurfaceSample FaceSurface::eval(const Vec2& uv) {
+  const SurfaceD1 d = g_.eval_face(face_, uv);
+  SurfaceSample s;
+  s.p = d.p;
+  s.du = d.du;
+  s.dv = d.dv;
+  const Vec3 n = d.du.cross(d.dv);
+  const double len = n.norm();
+  s.n = len > 1e-14 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
+                                                                             : Vec3(Vec3::Zero());
+  s.h = h_.at(face_, uv, hint_);
+  ++size_queries;
+  return s;
+}
+
+Vec2 FaceSurface::unwrap(Vec2 uv, const Vec2& near) const {
+  if (period_u_ > 0) uv.x() -= period_u_ * std::round((uv.x() - near.x()) / period_u_);
+  if (period_v_ > 0) uv.y() -= period_v_ * std::round((uv.y() - near.y()) / period_v_);
+  return uv;
+}
+
+bool FaceSurface::project(const Vec3& xyz, Vec2& uv) const {
+  const Vec2 start = uv;
+  if (!g_.project_to_face(face_, xyz, uv)) return false;
+  if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) return false;
+  uv = unwrap(uv, start);
+  return true;
+}
+
+}  // namespace sizemesh

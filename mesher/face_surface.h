@@ -1,0 +1,55 @@
+// One face's surface and size as the face mesher sees them: position, first
+// derivatives, unit natural normal and the wanted size h at a uv, with the
+// metric M = J^T J / h^2 (J = [du dv]) in which a unit edge has the wanted length.
+//
+// Inputs: the B-rep, the size function and a face id.
+// Outputs: samples at uv; projections of points in space onto the face (uv).
+// Not thread-safe (keeps the size query hint); one per face and thread.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "geometry/geometry.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+struct SurfaceSample {
+  Vec3 p, du, dv;
+  Vec3 n;        // unit (du x dv), zero where the surface is singular (poles)
+  double h = 0;  // wanted edge length (model units)
+
+  // Metric M = J^T J / h^2, regularised where J is singular.
+  Eigen::Matrix2d metric() const {
+    Eigen::Matrix2d m;
+    m << du.dot(du), du.dot(dv), du.dot(dv), dv.dot(dv);
+    m /= h * h;
+    m += 1e-10 * m.trace() * Eigen::Matrix2d::Identity();
+    return m;
+  }
+};
+
+class FaceSurface {
+ public:
+  FaceSurface(const Geometry& g, const SizeFunction& h, int face);
+
+  SurfaceSample eval(const Vec2& uv);
+  // Nearest point of the surface to xyz, from the start uv; the result is
+  // shifted by whole periods to lie closest to the start. False if it fails.
+  bool project(const Vec3& xyz, Vec2& uv) const;
+  // uv shifted by whole periods to lie closest to `near`.
+  Vec2 unwrap(Vec2 uv, const Vec2& near) const;
+
+  const Geometry& geometry() const { return g_; }
+  int face() const { return face_; }
+  long long size_queries = 0;
+
+ private:
+  const Geometry& g_;
+  const SizeFunction& h_;
+  int face_;
+  int hint_ = -1;
+  double period_u_, period_v_;
+};
+
+}  // namespace sizemesh

@@ -1,0 +1,56 @@
+// Small predicates on uv points and space triangles shared by the face mesher.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+// Twice the signed area of (a, b, c) in uv; > 0 counter-clockwise.
+inline double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// Shape quality 4 sqrt(3) area / sum of squared edge lengths (1 equilateral, 0 flat).
+inline double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double l = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  if (!(l > 0)) return 0;
+  return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / l;
+}
+
+// Smallest interior angle of a space triangle (degrees).
+inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 p[3] = {a, b, c};
+  double best = 180;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+    const double nu = u.norm(), nv = v.norm();
+    if (!(nu > 0 && nv > 0)) return 0;
+    best = std::min(best, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
+  }
+  return best;
+}
+
+// True when uv segments p1p2 and q1q2 cross or touch (collinear overlap included).
+inline bool segments_meet(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
+  const double lp = (p2 - p1).norm(), lq = (q2 - q1).norm();
+  const double tol = 1e-12 * (lp + lq) * (lp + lq);
+  const double d1 = orient(q1, q2, p1), d2 = orient(q1, q2, p2);
+  const double d3 = orient(p1, p2, q1), d4 = orient(p1, p2, q2);
+  if (((d1 > tol && d2 < -tol) || (d1 < -tol && d2 > tol)) &&
+      ((d3 > tol && d4 < -tol) || (d3 < -tol && d4 > tol)))
+    return true;
+  auto within = [](const Vec2& a, const Vec2& b, const Vec2& p) {
+    return p.x() >= std::min(a.x(), b.x()) && p.x() <= std::max(a.x(), b.x()) &&
+           p.y() >= std::min(a.y(), b.y()) && p.y() <= std::max(a.y(), b.y());
+  };
+  if (std::abs(d1) <= tol && within(q1, q2, p1)) return true;
+  if (std::abs(d2) <= tol && within(q1, q2, p2)) return true;
+  if (std::abs(d3) <= tol && within(p1, p2, q1)) return true;
+  if (std::abs(d4) <= tol && within(p1, p2, q2)) return true;
+  return false;
+}
+
+}  // namespace sizemesh

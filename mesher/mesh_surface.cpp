@@ -1,0 +1,124 @@
+#include "mesher/mesh_surface.h"
+
+#include <chrono>
+#include <memory>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "mesher/advancing_front.h"
+#include "mesher/discretise_curves.h"
+#include "mesher/face_boundary.h"
+#include "mesher/optimise.h"
+
+namespace sizemesh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct FaceResult {
+  FaceMesh mesh;
+  bool ok = false;
+  std::string reason;
+  long long size_queries = 0;
+  int fronts_3d = 0;
+  double seconds_front = 0, seconds_optimise = 0;
+};
+
+// One face, start to end; never throws.
+FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& cm, int face,
+                     const MeshOptions& o) {
+  FaceResult r;
+  FaceSurface fs(g, h, face);
+  try {
+    const auto t0 = Clock::now();
+    r.mesh = face_boundary(g, cm, fs);
+    const FrontResult fr = advancing_front(r.mesh, fs);
+    r.fronts_3d = fr.fronts_3d;
+    r.seconds_front = seconds_since(t0);
+    if (!fr.ok) {
+      r.reason = fr.reason;
+    } else {
+      const auto t1 = Clock::now();
+      optimise(r.mesh, fs, o.optimise_passes);
+      r.seconds_optimise = seconds_since(t1);
+      r.ok = true;
+    }
+  } catch (const std::exception& e) {
+    r.reason = std::string("exception: ") + e.what();
+  } catch (...) {
+    r.reason = "exception from the geometry kernel";
+  }
+  r.size_queries = fs.size_queries;
+  if (!r.ok) r.mesh = FaceMesh();
+  return r;
+}
+
+}  // namespace
+
+SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
+  std::unique_ptr<tbb::global_control> limit;
+  if (o.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+
+  SurfaceMesh out;
+  // 1. Curves: one unit mesh per curve (paper 2.1), shared by its faces.
+  auto t0 = Clock::now();
+  CurveMesh cm = discretise_curves(g, h);
+  out.stats.seconds_curves = seconds_since(t0);
+  out.stats.size_queries += cm.size_queries;
+
+  // 2. Faces: independent once the curves are fixed.
+  t0 = Clock::now();
+  const int nf = g.num_faces();
+  std::vector<FaceResult> faces(nf + 1);
+  tbb::parallel_for(1, nf + 1, [&](int f) { faces[f] = mesh_face(g, h, cm, f, o); });
+  out.stats.seconds_faces = seconds_since(t0);
+
+  // 3. Assembly in face order: shared nodes by index, inner nodes appended.
+  out.xyz = std::move(cm.xyz);
+  out.node_dim = std::move(cm.node_dim);
+  out.node_entity = std::move(cm.node_entity);
+  for (int f = 1; f <= nf; ++f) {
+    FaceResult& r = faces[f];
+    out.stats.size_queries += r.size_queries;
+    out.stats.fronts_3d += r.fronts_3d;
+    out.stats.seconds_front += r.seconds_front;
+    out.stats.seconds_optimise += r.seconds_optimise;
+    if (!r.ok) {
+      out.failures.push_back({f, r.reason});
+      continue;
+    }
+    const FaceMesh& fm = r.mesh;
+    std::vector<int> id(fm.num_nodes(), -1);
+    for (int i = 0; i < fm.num_nodes(); ++i) {
+      if (fm.global[i] >= 0) {
+        id[i] = fm.global[i];
+        continue;
+      }
+      id[i] = static_cast<int>(out.xyz.size());
+      out.xyz.push_back(fm.s[i].p);
+      out.node_dim.push_back(2);
+      out.node_entity.push_back(f);
+    }
+    const bool flip = g.face_reversed(f);
+    for (const auto& t : fm.tris) {
+      if (fm.pole_triangle(t)) continue;  // zero area on a pole
+      std::array<int, 3> gt{id[t[0]], id[t[1]], id[t[2]]};
+      std::array<Vec2, 3> uv{fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]]};
+      if (flip) {
+        std::swap(gt[1], gt[2]);
+        std::swap(uv[1], uv[2]);
+      }
+      out.tris.push_back(gt);
+      out.tri_face.push_back(f);
+      out.tri_uv.push_back(uv);
+    }
+  }
+  return out;
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,43 @@
+// Quality report of a surface mesh: shape, topology, validity against the
+// surface, size conformity and area.
+//
+// Inputs:
+//   m   the mesh (mesh_surface())
+//   g   the B-rep it was made from (surface normals, node distances)
+//   h   the size function it was made for (size conformity, via at_xyz)
+// Output (MeshQuality):
+//   min angle per triangle summarised as a histogram of 6-degree bins
+//   (bin k holds [6k, 6k+6)), counts below 12 and 24 degrees; boundary edges
+//   (in one triangle), non-manifold edges (in three or more), orientation
+//   conflicts (an edge used twice in one direction); inverted triangles
+//   (normal against the oriented surface normal) and zero-area triangles;
+//   largest distance of a node from its face's surface; share of edges with
+//   length / h(midpoint) in [1/sqrt2, sqrt2]; total area.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "geometry/geometry.h"
+#include "mesher/surface_mesh.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+struct MeshQuality {
+  int triangles = 0, nodes = 0;
+  std::vector<double> min_angle;          // per triangle (degrees)
+  std::array<int, 10> histogram{};        // of min_angle, 6-degree bins
+  int below_12 = 0, below_24 = 0;
+  double worst_angle = 180;
+  int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;
+  int inverted = 0, zero_area = 0;
+  double max_inner_node_distance = 0;     // nodes inside faces, from their surface
+  double max_node_distance = 0;           // every corner, from its face's surface
+  double size_conformity = 0;             // share of edges of conforming length
+  double area = 0;
+};
+
+MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h);
+
+}  // namespace sizemesh

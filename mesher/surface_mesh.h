@@ -1,0 +1,56 @@
+// The result of surface meshing (paper 4.1): one conforming triangle mesh of all faces.
+//
+// Outputs of mesh_surface():
+//   xyz          #nodes positions (model space)
+//   node_dim     #nodes classification dimension: 0 B-rep point, 1 curve, 2 face
+//   node_entity  #nodes id (1-based) of that point, curve or face
+//   tris         #tris node triples, oriented as the face lies in its shell
+//                (outward for closed solids)
+//   tri_face     #tris face id of each triangle
+//   tri_uv       #tris uv of each corner in its face (for checks against the surface)
+//   failures     faces that could not be meshed; their triangles are left out
+//   stats        seconds per stage and size queries made
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+struct MeshStats {
+  double seconds_curves = 0;    // wall time: curve discretisation (paper 2.1)
+  double seconds_faces = 0;     // wall time: the parallel face stage (front + optimisation)
+  double seconds_front = 0;     // summed over faces: advancing front
+  double seconds_optimise = 0;  // summed over faces: swaps and smoothing
+  long long size_queries = 0;   // calls of SizeFunction::at / at_xyz
+  int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
+};
+
+struct SurfaceMesh {
+  std::vector<Vec3> xyz;
+  std::vector<int8_t> node_dim;
+  std::vector<int> node_entity;
+
+  std::vector<std::array<int, 3>> tris;
+  std::vector<int> tri_face;
+  std::vector<std::array<Vec2, 3>> tri_uv;
+
+  struct Failure {
+    int face;
+    std::string reason;
+  };
+  std::vector<Failure> failures;
+
+  MeshStats stats;
+};
+
+struct MeshOptions {
+  int threads = 0;           // 0: all hardware threads
+  int optimise_passes = 3;   // swap + smoothing passes per face
+};
+
+}  // namespace sizemesh
