@@ -1,6 +1,8 @@
 #include "mesher/advancing_front.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <queue>
@@ -70,19 +72,35 @@ struct Level {
   double radius;     // candidates within this metric distance (in s) of the ideal point
   bool take_best;    // if none reaches q_min, take the best valid one
 };
-constexpr Level kLevels[] = {
-    {0.45, 0.5, 0.5, 1.5, false},
-    {0.45, 0.5, 0.5, 1.5, false},
-    {0.30, 0.3, 0.4, 2.0, true},
-    {0.30, 0.3, 0.4, 2.0, true},
-    {0.0, 0.05, 0.25, 4.0, true},
-    {0.0, 0.0, 0.15, 8.0, true},
+// Strategy 0 prefers well shaped triangles; when its front gets stuck the face
+// is meshed again with strategy 1, which takes the valid candidate nearest the
+// ideal point (it folds less on coarse, strongly curved faces), then 2, which
+// also accepts triangles closer to the surface's tangent plane limit.
+constexpr int kMaxTries = 6;
+constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
+    {{0.45, 0.5, 0.5, 1.5, false},
+     {0.45, 0.5, 0.5, 1.5, false},
+     {0.30, 0.3, 0.4, 2.0, true},
+     {0.30, 0.3, 0.4, 2.0, true},
+     {0.0, 0.05, 0.25, 4.0, true},
+     {0.0, 0.0, 0.15, 8.0, true}},
+    {{0.05, 0.5, 0.5, 1.5, false},
+     {0.05, 0.5, 0.5, 1.5, false},
+     {0.02, 0.3, 0.4, 2.0, true},
+     {0.02, 0.3, 0.4, 2.0, true},
+     {0.0, 0.05, 0.25, 4.0, true},
+     {0.0, 0.0, 0.15, 8.0, true}},
+    {{0.05, 0.3, 0.4, 2.0, false},
+     {0.02, 0.1, 0.3, 2.0, true},
+     {0.0, 0.0, 0.25, 4.0, true},
+     {0.0, -0.2, 0.15, 4.0, true},
+     {0.0, -0.5, 0.15, 8.0, true},
+     {0.0, -0.9, 0.1, 8.0, true}},
 };
-constexpr int kMaxTries = sizeof(kLevels) / sizeof(kLevels[0]);
 
 class Front {
  public:
-  Front(FaceMesh& fm, FaceSurface& fs) : fm_(fm), fs_(fs) {}
+  Front(FaceMesh& fm, FaceSurface& fs, int strategy) : fm_(fm), fs_(fs), levels_(kStrategies[strategy]) {}
 
   FrontResult run() {
     FrontResult r;
@@ -109,27 +127,32 @@ class Front {
       heap_.pop();
       FrontEdge& e = edges_[ei];
       if (!e.alive || e.key != key) continue;
-      if (advance(ei, kLevels[e.tries])) continue;
+      if (advance(ei, levels_[e.tries])) continue;
       ++failed;
       FrontEdge& e2 = edges_[ei];
       if (++e2.tries >= kMaxTries) {
         r.reason = "front could not advance from an edge after " + std::to_string(kMaxTries) +
                    " tries (" + std::to_string(alive_) + " front edges left)";
-        r.fronts_3d = fronts_3d_;
-        return r;
+        return fail(r);
       }
       e2.key += 1.0 + e2.tries;  // try the rest of the front first
       heap_.push({e2.key, ei});
       if (failed > max_failed || fm_.tris.size() > max_tris) {
         r.reason = "advancing front hit its iteration cap (" + std::to_string(alive_) +
                    " front edges left)";
-        r.fronts_3d = fronts_3d_;
-        return r;
+        return fail(r);
       }
     }
     r.ok = alive_ == 0;
     if (!r.ok) r.reason = "front left open";
     r.fronts_3d = fronts_3d_;
+    return r;
+  }
+
+  FrontResult& fail(FrontResult& r) const {
+    r.fronts_3d = fronts_3d_;
+    for (const FrontEdge& e : edges_)
+      if (e.alive) r.open_edges.push_back({e.a, e.b});
     return r;
   }
 
@@ -192,10 +215,10 @@ class Front {
       const Vec2& q = fm_.uv[e.b];
       if (new_ac && e.a != a && e.b != a && e.a != c.node && e.b != c.node &&
           segments_meet(ua, uc, p, q))
-        return -1;
+        return -2;
       if (new_cb && e.a != b && e.b != b && e.a != c.node && e.b != c.node &&
           segments_meet(uc, ub, p, q))
-        return -1;
+        return -2;
     }
     // No front node inside or on the triangle.
     const double tol = -1e-10 * o;
@@ -203,7 +226,7 @@ class Front {
       if (k == a || k == b || k == c.node) continue;
       const Vec2& uk = fm_.uv[k];
       if (orient(ua, ub, uk) >= tol && orient(ub, uc, uk) >= tol && orient(uc, ua, uk) >= tol)
-        return -1;
+        return -3;
     }
     // Space: the triangle faces the way of the surface normal (Tremel procedure 2).
     const bool pole_tri = pole_pair(a, b) || (c.node >= 0 && (pole_pair(b, c.node) || pole_pair(c.node, a)));
@@ -212,12 +235,13 @@ class Front {
     const Vec3& pb = fm_.s[b].p;
     const Vec3& pc = c.s.p;
     const Vec3 nt = (pb - pa).cross(pc - pa);
-    const Vec3 ns = fm_.s[a].n + fm_.s[b].n + c.s.n;
-    const double lt = nt.norm(), ls = ns.norm();
-    if (!(lt > 0)) return -1;
-    if (ls > 0 && nt.dot(ns) <= lv.cos_min * lt * ls) return -1;
+    const double lt = nt.norm();
+    if (!(lt > 0)) return -4;
+    const Vec3* normals[3] = {&fm_.s[a].n, &fm_.s[b].n, &c.s.n};  // zero on poles
+    for (const Vec3* n : normals)
+      if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return -5;
     const double q = triangle_quality(pa, pb, pc);
-    return q > 1e-6 ? q : -1;
+    return q > 1e-6 ? q : -6;
   }
 
   // Metric distance (in M) from a new point to the nearby front.
@@ -263,7 +287,8 @@ class Front {
     ideal.uv = m + height * d;
     ideal.s = fs_.eval(ideal.uv);
     const Eigen::Matrix2d Mp = ideal.s.metric();
-    const Eigen::Matrix2d M = pole_edge ? Mp : Eigen::Matrix2d(0.5 * (Mm + Mp));
+    // Ranking metric: the midpoint's, except on a pole where it is singular.
+    const Eigen::Matrix2d M = pole_edge ? Mp : Mm;
 
     // Nearby front: a box holding the metric ball of radius lv.radius * s around the ideal point.
     const double r = lv.radius * s;
@@ -295,12 +320,18 @@ class Front {
     }
 
     std::vector<Candidate> cands;
+    // Front neighbours of the edge are always candidates (they close loops).
+    int prev = -1, next = -1;
+    for (int ej : near_edges_) {
+      if (edges_[ej].a == b) next = edges_[ej].b;
+      if (edges_[ej].b == a) prev = edges_[ej].a;
+    }
     for (int k : near_nodes_) {
       if (k == a || k == b) continue;
       if (orient(ua, ub, fm_.uv[k]) <= 0) continue;
       const Vec2 dk = fm_.uv[k] - ideal.uv;
       const double dist = std::sqrt(std::max(dk.dot(M * dk), 0.0)) / s;
-      if (dist > lv.radius) continue;
+      if (dist > lv.radius && k != prev && k != next) continue;
       Candidate c;
       c.node = k;
       c.uv = fm_.uv[k];
@@ -320,6 +351,7 @@ class Front {
     double best_q = -1;
     for (size_t i = 0; i < cands.size(); ++i) {
       const double q = check(a, b, cands[i], lv);
+      if (getenv("AFDBG")) fprintf(stderr, "edge %d %d cand %d rank %g q %g\n", a, b, cands[i].node, cands[i].rank, q);
       if (q < 0) continue;
       if (q >= lv.q_min) {
         best = static_cast<int>(i);
@@ -391,6 +423,7 @@ class Front {
 
   FaceMesh& fm_;
   FaceSurface& fs_;
+  const Level* levels_;
   std::vector<FrontEdge> edges_;
   std::vector<unsigned> stamp_, node_stamp_;
   unsigned visit_ = 0;
@@ -406,8 +439,8 @@ class Front {
 
 }  // namespace
 
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs) {
-  Front front(fm, fs);
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy) {
+  Front front(fm, fs, std::clamp(strategy, 0, kStrategyCount - 1));
   return front.run();
 }
 

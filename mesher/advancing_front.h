@@ -8,9 +8,12 @@
 // Output: fm.tris (counter-clockwise in uv) and the nodes created inside the
 //         face; FrontResult says whether the front closed and, if not, why.
 // Terminates on every input: failed attempts are capped.
+// Retrying a failed face with a later strategy (from the same boundary) is the caller's choice.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "mesher/face_mesh.h"
 
@@ -20,8 +23,11 @@ struct FrontResult {
   bool ok = false;
   std::string reason;
   int fronts_3d = 0;  // ideal points computed in space (Tremel procedure 1)
+  std::vector<std::array<int, 2>> open_edges;  // front left when it failed
 };
 
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs);
+// Strategies 0 .. kStrategyCount-1, from the best shapes to the most robust.
+constexpr int kStrategyCount = 3;
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy = 0);
 
 }  // namespace sizemesh

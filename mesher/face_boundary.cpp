@@ -122,6 +122,7 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
       const Entry& a = loop[i];
       SurfaceSample sa = fs.eval(a.uv);
       sa.p = cm.xyz[a.global];
+      if (a.pole) sa.n = Vec3::Zero();  // undefined on a pole
       ids.push_back(fm.add_node(a.uv, sa, a.global, a.pole));
       const Entry& b = loop[(i + 1) % n];
       if (!(a.pole && b.pole && a.global == b.global)) continue;
@@ -147,6 +148,7 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
         const Vec2 uv = a.uv + (b.uv - a.uv) * (double(j) / k);
         SurfaceSample sj = fs.eval(uv);
         sj.p = cm.xyz[a.global];
+        sj.n = Vec3::Zero();
         ids.push_back(fm.add_node(uv, sj, a.global, true));
       }
     }

@@ -15,7 +15,7 @@ SurfaceSample FaceSurface::eval(const Vec2& uv) {
   s.dv = d.dv;
   const Vec3 n = d.du.cross(d.dv);
   const double len = n.norm();
-  s.n = len > 1e-14 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
+  s.n = len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
                                                                              : Vec3(Vec3::Zero());
   s.h = h_.at(face_, uv, hint_);
   ++size_queries;

@@ -35,9 +35,13 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   FaceSurface fs(g, h, face);
   try {
     const auto t0 = Clock::now();
-    r.mesh = face_boundary(g, cm, fs);
-    const FrontResult fr = advancing_front(r.mesh, fs);
-    r.fronts_3d = fr.fronts_3d;
+    const FaceMesh boundary = face_boundary(g, cm, fs);
+    FrontResult fr;
+    for (int strategy = 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
+      r.mesh = boundary;
+      fr = advancing_front(r.mesh, fs, strategy);
+      r.fronts_3d += fr.fronts_3d;
+    }
     r.seconds_front = seconds_since(t0);
     if (!fr.ok) {
       r.reason = fr.reason;

@@ -20,10 +20,10 @@ double shape(const FaceMesh& fm, const Vec2& ua, const Vec2& ub, const Vec2& uc,
   const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
   if (!(o > 1e-10 * scale)) return -1;
   const Vec3 nt = (sb.p - sa.p).cross(sc.p - sa.p);
-  const Vec3 ns = sa.n + sb.n + sc.n;
-  const double lt = nt.norm(), ls = ns.norm();
+  const double lt = nt.norm();
   if (!(lt > 0)) return -1;
-  if (ls > 0 && nt.dot(ns) < kCosMin * lt * ls) return -1;
+  for (const Vec3* n : {&sa.n, &sb.n, &sc.n})  // zero on poles
+    if (n->squaredNorm() > 0 && nt.dot(*n) < kCosMin * lt) return -1;
   return triangle_quality(sa.p, sb.p, sc.p);
 }
 
