@@ -50,9 +50,9 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
   const double lo = 1.0 / std::sqrt(2.0), hi = std::sqrt(2.0);
   for (const auto& [key, uses] : directed) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (uses > 1) ++q.orientation_conflicts;
     auto it = directed.find(code(b, a));
     const int back = it == directed.end() ? 0 : it->second;
+    if (uses == 2 && back == 0) ++q.orientation_conflicts;  // a manifold edge used twice one way
     if (back > 0 && a > b) continue;  // count each undirected edge once
     const int total = uses + back;
     if (total == 1) ++q.boundary_edges;

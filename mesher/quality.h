@@ -9,7 +9,7 @@
 //   min angle per triangle summarised as a histogram of 6-degree bins
 //   (bin k holds [6k, 6k+6)), counts below 12 and 24 degrees; boundary edges
 //   (in one triangle), non-manifold edges (in three or more), orientation
-//   conflicts (an edge used twice in one direction); inverted triangles
+//   conflicts (an edge of two triangles used twice in one direction); inverted triangles
 //   (normal against the oriented surface normal) and zero-area triangles;
 //   largest distance of a node from its face's surface; share of edges with
 //   length / h(midpoint) in [1/sqrt2, sqrt2]; total area.

@@ -1,0 +1,246 @@
+// Surface mesher (paper 4.1): unit-mesh curve counts (paper 2.1), and on OCCT
+// solids and the shared models: no face fails, closed solids give watertight
+// and consistently oriented meshes with no inverted or zero-area triangle,
+// nodes on their surfaces, the CAD area, good angles, sizes that conform, and
+// a mesh independent of the thread count.
+#include <catch2/catch.hpp>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <gp_Ax2.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geometry/occt_model.h"
+#include "mesher/discretise_curves.h"
+#include "mesher/mesh_surface.h"
+#include "mesher/quality.h"
+
+using namespace sizemesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// h grows linearly with the distance from a point, clamped to [h0, h_max].
+class GradedSize final : public SizeFunction {
+ public:
+  GradedSize(const Geometry& g, Vec3 center, double h0, double slope, double h_max)
+      : g_(g), c_(center), h0_(h0), slope_(slope), h_max_(h_max) {}
+  double at(int face, const Vec2& uv, int&) const override { return at_xyz(g_.eval_face(face, uv).p); }
+  double at_xyz(const Vec3& x) const override {
+    return std::min(h_max_, h0_ + slope_ * (x - c_).norm());
+  }
+
+ private:
+  const Geometry& g_;
+  Vec3 c_;
+  double h0_, slope_, h_max_;
+};
+
+double cad_area(const Geometry& g) {
+  double a = 0;
+  for (int f = 1; f <= g.num_faces(); ++f) a += g.face_area(f);
+  return a;
+}
+
+// Every property the mesher promises for a closed solid.
+void require_valid_closed(const Geometry& g, const SurfaceMesh& m, const MeshQuality& q, double diag,
+                          bool closed = true) {
+  INFO("failures " << m.failures.size() << (m.failures.empty() ? "" : ": " + m.failures[0].reason));
+  REQUIRE(m.failures.empty());
+  REQUIRE(q.triangles > 0);
+  if (closed) {
+    CHECK(q.boundary_edges == 0);
+    CHECK(q.nonmanifold_edges == 0);
+  }
+  CHECK(q.orientation_conflicts == 0);
+  CHECK(q.inverted == 0);
+  CHECK(q.zero_area == 0);
+  CHECK(q.max_inner_node_distance <= 1e-9 * diag);
+  CHECK(q.max_node_distance <= 1e-3 * diag);  // curve nodes: within the CAD's edge tolerance
+}
+
+void require_good_shape(const MeshQuality& q, const SurfaceMesh& m, const Geometry& g) {
+  INFO("triangles " << q.triangles << ", below 12 deg " << q.below_12 << ", below 24 deg " << q.below_24
+                    << ", conformity " << q.size_conformity << ", area " << q.area << " vs CAD "
+                    << cad_area(g));
+  CHECK(q.below_12 <= 0.0005 * q.triangles);
+  CHECK(q.below_24 <= 0.005 * q.triangles);
+  CHECK(q.size_conformity >= 0.90);
+  CHECK(std::abs(q.area - cad_area(g)) <= 0.005 * cad_area(g));
+}
+
+TopoDS_Shape plate_with_hole() {
+  TopoDS_Shape plate = BRepPrimAPI_MakeBox(gp_Pnt(-2, -2, 0), 4, 4, 0.5).Shape();
+  TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.3, 0.2, -1), gp_Dir(0, 0, 1)), 0.8, 3).Shape();
+  return BRepAlgoAPI_Cut(plate, hole).Shape();
+}
+
+struct Solid {
+  const char* name;
+  TopoDS_Shape shape;
+  double h;
+};
+
+std::vector<Solid> solids() {
+  return {
+      {"box", BRepPrimAPI_MakeBox(1.0, 2.0, 0.5).Shape(), 0.1},
+      {"sphere", BRepPrimAPI_MakeSphere(1.0).Shape(), 0.1},
+      {"cylinder", BRepPrimAPI_MakeCylinder(1.0, 2.0).Shape(), 0.1},
+      {"torus", BRepPrimAPI_MakeTorus(2.0, 0.5).Shape(), 0.06},
+      {"cone", BRepPrimAPI_MakeCone(1.0, 0.0, 2.0).Shape(), 0.08},
+      {"plate with a hole", plate_with_hole(), 0.12},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("curve segment counts follow the unit mesh rule (Eq. 1a, 2a)", "[mesher]") {
+  const Model box = model_from_shape(BRepPrimAPI_MakeBox(1.0, 2.0, 3.0).Shape());
+  const UniformSize h(0.3);
+  const CurveMesh cm = discretise_curves(box, h);
+  for (int c = 1; c <= box.num_curves(); ++c) {
+    const int n = static_cast<int>(cm.curves[c].node.size()) - 1;
+    CHECK(n == std::max(1L, std::lround(box.curve_length(c) / 0.3)));  // Eq. 2a, h constant
+    // Shared end points: the nodes at t0 and t1 are the B-rep points' nodes.
+    CHECK(cm.curves[c].node.front() == cm.point_node[box.curve_start_point(c)]);
+    CHECK(cm.curves[c].node.back() == cm.point_node[box.curve_end_point(c)]);
+  }
+
+  // A linear size along an edge: n = l ln(h1/h0) / (h1 - h0) (Eq. 2a), and
+  // every segment has unit metric length (Eq. 1b, 2b).
+  const GradedSize graded(box, Vec3(0, 0, 0), 0.05, 0.5, 10.0);
+  const CurveMesh cg = discretise_curves(box, graded);
+  int checked = 0;
+  for (int c = 1; c <= box.num_curves(); ++c) {
+    const Vec3 a = box.point_xyz(box.curve_start_point(c)), b = box.point_xyz(box.curve_end_point(c));
+    if (a.norm() > 1e-12 && b.norm() > 1e-12) continue;  // only edges from the origin are linear in h
+    const double l = (b - a).norm(), h0 = 0.05, h1 = 0.05 + 0.5 * l;
+    const double n_exact = l * std::log(h1 / h0) / (h1 - h0);
+    const int n = static_cast<int>(cg.curves[c].node.size()) - 1;
+    CHECK(n == std::lround(n_exact));
+    for (int i = 0; i < n; ++i) {
+      const Vec3 p = cg.xyz[cg.curves[c].node[i]], q = cg.xyz[cg.curves[c].node[i + 1]];
+      const double hp = graded.at_xyz(p), hq = graded.at_xyz(q);
+      const double metric = (q - p).norm() * std::log(hq / hp) / (hq - hp);  // Eq. 2b
+      CHECK(metric == Approx(n_exact / n).epsilon(0.02));
+    }
+    ++checked;
+  }
+  CHECK(checked == 3);
+}
+
+TEST_CASE("closed curves and small loops get enough segments for a valid loop", "[mesher]") {
+  // A cylinder much thinner than h: its circles still get 3 or more segments.
+  const Model cyl = model_from_shape(BRepPrimAPI_MakeCylinder(0.01, 1.0).Shape());
+  const UniformSize h(0.5);
+  const CurveMesh cm = discretise_curves(cyl, h);
+  for (int c = 1; c <= cyl.num_curves(); ++c) {
+    if (cyl.curve_degenerated(c)) {
+      CHECK(cm.curves[c].node.empty());
+      continue;
+    }
+    if (cyl.curve_start_point(c) == cyl.curve_end_point(c) && cyl.curve_length(c) < 0.1)
+      CHECK(cm.curves[c].node.size() >= 4);
+  }
+  const SurfaceMesh m = mesh_surface(cyl, h);
+  const MeshQuality q = mesh_quality(m, cyl, h);
+  require_valid_closed(cyl, m, q, 1.0);
+}
+
+TEST_CASE("OCCT solids mesh watertight, valid, on the CAD area, with good angles", "[mesher]") {
+  for (const Solid& s : solids()) {
+    SECTION(s.name) {
+      const Model model = model_from_shape(s.shape);
+      const double diag = model.info().diagonal();
+      const UniformSize h(s.h);
+      const SurfaceMesh m = mesh_surface(model, h);
+      const MeshQuality q = mesh_quality(m, model, h);
+      INFO(s.name);
+      require_valid_closed(model, m, q, diag);
+      require_good_shape(q, m, model);
+    }
+  }
+}
+
+TEST_CASE("OCCT solids mesh valid under a graded size map", "[mesher]") {
+  for (const Solid& s : solids()) {
+    SECTION(s.name) {
+      const Model model = model_from_shape(s.shape);
+      const double diag = model.info().diagonal();
+      const GradedSize h(model, model.info().bbox_min, 0.3 * s.h, 0.3, 2.5 * s.h);
+      const SurfaceMesh m = mesh_surface(model, h);
+      const MeshQuality q = mesh_quality(m, model, h);
+      INFO(s.name);
+      require_valid_closed(model, m, q, diag);
+      INFO("below 12 deg " << q.below_12 << " of " << q.triangles << ", conformity " << q.size_conformity);
+      CHECK(q.below_12 <= 0.0005 * q.triangles);
+      CHECK(q.below_24 <= 0.005 * q.triangles);
+      CHECK(q.size_conformity >= 0.90);
+    }
+  }
+}
+
+TEST_CASE("the mesh does not depend on the thread count", "[mesher]") {
+  const Model model = model_from_shape(plate_with_hole());
+  const UniformSize h(0.1);
+  MeshOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const SurfaceMesh a = mesh_surface(model, h, one);
+  const SurfaceMesh b = mesh_surface(model, h, two);
+  CHECK(a.tris == b.tris);
+  CHECK(a.xyz == b.xyz);
+  CHECK(a.tri_face == b.tri_face);
+}
+
+TEST_CASE("the orientation follows the shell: outward normals on a closed solid", "[mesher]") {
+  const Model box = model_from_shape(BRepPrimAPI_MakeBox(1.0, 1.0, 1.0).Shape());
+  const UniformSize h(0.2);
+  const SurfaceMesh m = mesh_surface(box, h);
+  const Vec3 center(0.5, 0.5, 0.5);
+  for (const auto& t : m.tris) {
+    const Vec3 n = (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]);
+    const Vec3 c = (m.xyz[t[0]] + m.xyz[t[1]] + m.xyz[t[2]]) / 3.0;
+    CHECK(n.dot(c - center) > 0);
+  }
+  // Signed volume of a closed, outward mesh is the solid's volume.
+  double vol = 0;
+  for (const auto& t : m.tris) vol += m.xyz[t[0]].dot(m.xyz[t[1]].cross(m.xyz[t[2]])) / 6.0;
+  CHECK(vol == Approx(1.0).epsilon(1e-9));
+}
+
+TEST_CASE("shared models mesh with no failed face, watertight when closed", "[mesher][models]") {
+  struct Case {
+    const char* file;
+    bool closed;
+  };
+  const Case cases[] = {{"onera_m6_wing.stp", true},         {"cone70_capsule_sting.step", true},
+                        {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
+                        {"cylinder_head_fins.stp", true},    {"steering_knuckle.stp", true},
+                        {"d150_fuselage.igs", true},         {"f16_openvsp.stp", false}};
+  for (const Case& c : cases) {
+    SECTION(c.file) {
+      const Model model = load_model(std::string(SIZEMESH_MODELS_DIR) + "/" + c.file);
+      const double diag = model.info().diagonal();
+      const UniformSize h(diag / 40);
+      MeshOptions one, two;
+      one.threads = 1;
+      two.threads = 2;
+      const SurfaceMesh m = mesh_surface(model, h, two);
+      const MeshQuality q = mesh_quality(m, model, h);
+      INFO(c.file << ": " << q.triangles << " triangles");
+      require_valid_closed(model, m, q, diag, c.closed);
+      const SurfaceMesh m1 = mesh_surface(model, h, one);
+      CHECK(m1.tris == m.tris);
+      CHECK(m1.xyz == m.xyz);
+    }
+  }
+}
