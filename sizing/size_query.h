@@ -1,0 +1,111 @@
+// The size query service: the base-element search and interpolation (paper 4.2).
+//
+// Inputs (constructor)
+//   bg        background mesh (paper 3.1); only its face patches (uv triangulations
+//             with adjacency) and its global triangles are read, and copied, so bg
+//             may be destroyed afterwards
+//   h         #V sizes, one per global background vertex (xyz units)
+//   period_u  per face (index face - 1) the period in u, 0 (or missing) when the
+//   period_v  face is not periodic; take them from Geometry::face_period_u / _v
+// Outputs (queries)
+//   locate(face, uv, hint)  the base triangle of uv in that face's patch and the
+//                           size interpolated linearly (barycentric) inside it
+//   at(face, uv, hint)      the same as a SizeFunction; counts into stats()
+//   at_xyz(xyz)             the size at the nearest background triangle in 3D
+//
+// How a query is answered (paper 4.2: "the search occurs in the two-dimensional
+// parametric space of the input face"; walk-through after Shan et al. 2008):
+//   1. uv of a periodic face is wrapped by its period into the patch's uv range;
+//   2. the walk starts from the hint (the previous answer's triangle) or, with no
+//      hint, from a per-face coarse grid of start triangles built here;
+//   3. it steps from triangle to neighbour across an edge the point lies beyond,
+//      never back across the entry edge, choosing between two such edges by a
+//      deterministic coin (remembering stochastic walk), until the point is inside;
+//   4. a walk blocked by the patch boundary follows the boundary to the nearest
+//      boundary point; a point slightly outside the domain (trimming tolerance,
+//      chord sagitta, round-off) gets the size there, clamped, never extrapolated;
+//   5. a walk that exceeds its step limit (cycles in folded uv patches), or is
+//      blocked without being clearly outside, ends in a counted brute-force scan.
+// A face with no background triangles, a face id out of range or a non-finite
+// uv makes locate()/at() throw sizemesh::Error naming the face (no surface
+// evaluator is available here to fall back on).
+//
+// Every query is const and thread-safe; at() keeps per-thread counters that
+// stats() sums.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geometry/background_mesh.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+// Counters of the base-element search (the paper reports the mean search depth).
+struct QueryStats {
+  uint64_t queries = 0;      // calls
+  uint64_t visited = 0;      // triangles visited (walk steps, boundary steps, scanned by fallbacks)
+  uint64_t max_visited = 0;  // most triangles visited by one call
+  uint64_t fallbacks = 0;    // calls that ended in the brute-force scan
+  uint64_t outside = 0;      // points outside the triangulated domain, clamped to its boundary
+  void add(const QueryStats& o);
+  double mean_visited() const { return queries ? static_cast<double>(visited) / queries : 0.0; }
+};
+
+class SizeQuery final : public SizeFunction {
+ public:
+  SizeQuery(const BackgroundMesh& bg, std::vector<double> h, std::vector<double> period_u = {},
+            std::vector<double> period_v = {});
+  ~SizeQuery() override;
+  SizeQuery(SizeQuery&&) noexcept;
+  SizeQuery& operator=(SizeQuery&&) noexcept;
+
+  struct Hit {
+    double h;  // interpolated size
+    int tri;   // local triangle id in the face's patch: the next nearby call's hint
+  };
+
+  // Base-element search by walk-through (paper 4.2). hint < 0 or out of range: no hint.
+  Hit locate(int face, const Vec2& uv, int hint, QueryStats* stats = nullptr) const;
+  // Reference answer: scans every triangle of the face (containing, else nearest).
+  Hit locate_brute_force(int face, const Vec2& uv) const;
+
+  double at(int face, const Vec2& uv, int& hint) const override;
+  // Nearest background triangle in xyz (bounding-volume hierarchy), barycentric there.
+  double at_xyz(const Vec3& xyz) const override;
+
+  QueryStats stats() const;
+  void reset_stats();
+
+  int num_faces() const;
+  int num_triangles(int face) const;
+
+  // Per-triangle data of the walk, precomputed (one 96-byte record per triangle).
+  struct Tri {
+    std::array<Vec2, 3> uv;      // corner uv (counter-clockwise)
+    std::array<double, 3> h;     // corner sizes
+    std::array<int, 3> adj;      // neighbour across the edge opposite corner k, -1 on the boundary
+    std::array<int8_t, 3> back;  // that edge's index in the neighbour
+    uint8_t base = 0;            // bit k: edge k is evaluated from corner k+2 (else k+1)
+  };
+  struct Face;  // a face's triangles, start grid and periods
+  struct Bvh;   // global triangles for at_xyz
+  struct StatSlot;
+
+ private:
+  const Face& face_data(int face) const;
+  Hit walk(const Face& f, const Vec2& p, int start, QueryStats& st) const;
+  Hit clamp_to_boundary(const Face& f, const Vec2& p, int t, int k, QueryStats& st) const;
+  Hit brute_force(const Face& f, const Vec2& p, QueryStats& st) const;
+  void count(const QueryStats& one) const;
+
+  std::vector<Face> faces_;      // index face - 1
+  std::unique_ptr<Bvh> bvh_;
+  std::unique_ptr<StatSlot[]> slots_;
+};
+
+}  // namespace sizemesh
