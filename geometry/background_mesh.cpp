@@ -14,6 +14,7 @@
 #include <TopoDS_Face.hxx>
 
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "geometry/background_mesh.h"
@@ -73,6 +74,7 @@ class Builder {
     bg_.xyz.push_back(p);
     bg_.dim.push_back(static_cast<int8_t>(dim));
     bg_.entity.push_back(entity);
+    bg_.curve_t.push_back(std::numeric_limits<double>::quiet_NaN());
     return bg_.num_vertices() - 1;
   }
 
@@ -109,7 +111,10 @@ class Builder {
         int v;
         if (j == 0 && point_vertex(cd.start_point) >= 0) v = point_vertex(cd.start_point);
         else if (j == n - 1 && point_vertex(cd.end_point) >= 0) v = point_vertex(cd.end_point);
-        else v = add_vertex(node_xyz(i), 1, curve);
+        else {
+          v = add_vertex(node_xyz(i), 1, curve);
+          bg_.curve_t[v] = params[i];
+        }
         chain.vertex.push_back(v);
         chain.t.push_back(params[i]);
       }

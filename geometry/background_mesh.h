@@ -31,6 +31,7 @@ struct BackgroundMesh {
   std::vector<Vec3> xyz;
   std::vector<int8_t> dim;     // classification dimension: 0 point, 1 curve, 2 face
   std::vector<int> entity;     // id of the point, curve or face the vertex is classified on
+  std::vector<double> curve_t; // curve parameter of dimension-1 vertices (NaN for the others)
   // Triangles: #T (global vertex ids, oriented as the face lies in its shell)
   std::vector<std::array<int, 3>> tris;
   std::vector<int> tri_face;   // face id per triangle

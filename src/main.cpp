@@ -41,6 +41,23 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(positive);
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
+  auto* sizing = "sizing (paper 3.4; h_min/h_max default to 1e-4 and 0.05 of the bounding-box diagonal)";
+  app.add_option("--phi-c", o.sizing.phi_c_deg, "curvature: central angle per element, degrees, in (0, 180)")
+      ->capture_default_str()->group(sizing);
+  app.add_option("--mu-d", o.sizing.mu_d, "proximity: elements across a thin region, > 0")
+      ->capture_default_str()->group(sizing);
+  app.add_option("--beta", o.sizing.beta, "gradation: largest size ratio between neighbouring elements, >= 1")
+      ->capture_default_str()->group(sizing);
+  app.add_option("--h-min", o.sizing.h_min, "smallest element size (model units)")->group(sizing);
+  app.add_option("--h-max", o.sizing.h_max, "largest element size (model units)")->group(sizing);
+  app.add_flag("!--no-gaps", o.sizing.local_proximity,
+               "do not refine thin gaps between faces (plates, blunt trailing edges, part gaps)")->group(sizing);
+  app.add_option("--config", o.config,
+                 "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
+                 "(see examples/sizing.json)")->group(sizing);
+  std::string solver = "exact";
+  app.add_option("--smoother", solver, "edge-gradation solver: exact (Dijkstra) or lpsolve (reference LP)")
+      ->capture_default_str()->check(CLI::IsMember({"exact", "lpsolve"}))->group(sizing);
   app.add_flag("-q,--quiet", [&](int64_t) { o.verbose = false; }, "print nothing but errors");
   app.set_version_flag("--version", std::string("sizemesh ") + SIZEMESH_VERSION);
   try {
@@ -50,6 +67,7 @@ int main(int argc, char** argv) {
     std::cerr << "sizemesh: error: " << e.what() << "\n";
     return kUsage;
   }
+  o.edge_solver = solver == "lpsolve" ? EdgeSolver::LpSolve : EdgeSolver::Dijkstra;
   try {
     if (info_only) {
       print_info(load_model(o.input, o.load), std::cout);

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <iostream>
 
+#include "sizing/initial_sizes.h"
 #include "src/background_output.h"
+#include "src/sizing_report.h"
 #include "src/vtu_writer.h"
 
 namespace sizemesh {
@@ -26,8 +28,13 @@ int run(const RunOptions& o) {
   if (o.verbose)
     std::cout << "loaded " << model.info().faces << " faces in " << t_load << " s; background mesh "
               << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices in " << t_bg << " s\n";
-  if (!o.background.empty()) write_background(o.background, bg);
-  if (!o.output.empty()) write_background(o.output, bg);
+  SizingParams params = o.sizing;
+  if (!o.config.empty()) read_config(o.config, params);
+  SizeMap h = initial_sizes(model, bg, params, model.info().diagonal());  // sizing/ (paper 3.2, 3.4)
+  SmoothStats smoothing = smooth(bg, h, o.edge_solver);                   // sizing/ (paper 3.3, Eq. 11-12)
+  if (o.verbose) print_sizing_summary(bg, h, smoothing, std::cout);
+  if (!o.background.empty()) write_background_sizes(o.background, bg, h);
+  if (!o.output.empty()) write_background_sizes(o.output, bg, h);
   return kOk;
 }
 

@@ -5,6 +5,8 @@
 
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
+#include "sizing/params.h"
+#include "sizing/smooth.h"
 
 namespace sizemesh {
 
@@ -14,6 +16,9 @@ struct RunOptions {
   std::string background;   // background mesh with size fields (.vtu); empty: none
   LoadOptions load;
   BackgroundOptions tessellation;
+  SizingParams sizing;
+  std::string config;       // JSON config (globals and local sizes); empty: none
+  EdgeSolver edge_solver = EdgeSolver::Dijkstra;
   bool verbose = true;
 };
 

@@ -1,0 +1,63 @@
+#include "sizing/curvature_size.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace sizemesh {
+
+double chord_size(double k, double phi_deg) {
+  if (!(k > 0) || !std::isfinite(k)) return kNoLimit;
+  return 2.0 / k * std::sin(0.5 * phi_deg * M_PI / 180.0);  // h_c = 2 r sin(phi_c/2)
+}
+
+namespace {
+double local(const std::map<int, double>& m, int id, double fallback) {
+  auto it = m.find(id);
+  return it == m.end() ? fallback : it->second;
+}
+// Curvature at uv; at a singular point (a pole, an apex) where it is undefined,
+// the curvature just beside it, a small step toward the face's uv centre.
+bool face_curvature(const Geometry& g, int face, const Vec2& uv, double& k) {
+  if (g.max_curvature(face, uv, k)) return true;
+  const UVBox box = g.face_uv_bounds(face);
+  const Vec2 centre = 0.5 * (box.lo + box.hi);
+  for (double step : {1e-6, 1e-4, 1e-2})
+    if (g.max_curvature(face, uv + step * (centre - uv), k)) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
+  const int nv = bg.num_vertices();
+  std::vector<double> h(nv, kNoLimit);
+  // Faces: each vertex at its uv on every face it lies on; the smallest size wins.
+  tbb::parallel_for(0, nv, [&](int v) {
+    double best = kNoLimit;
+    for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
+      const int f = bg.use_face[u];
+      double k;
+      if (face_curvature(g, f, bg.patches[f - 1].uv[bg.use_local[u]], k))
+        best = std::min(best, chord_size(k, local(p.face_phi_c_deg, f, p.phi_c_deg)));
+    }
+    h[v] = best;
+  });
+  // Curves: the curve's own curvature at its vertices and at its end points.
+  auto curve_at = [&](int c, double t, int v) {
+    double k;
+    if (g.curve_curvature(c, t, k)) h[v] = std::min(h[v], chord_size(k, local(p.curve_phi_c_deg, c, p.phi_c_deg)));
+  };
+  for (int v = 0; v < nv; ++v)
+    if (bg.dim[v] == 1) curve_at(bg.entity[v], bg.curve_t[v], v);
+  for (int c = 1; c <= g.num_curves(); ++c) {
+    if (g.curve_degenerated(c)) continue;
+    double t0, t1;
+    g.curve_range(c, t0, t1);
+    if (g.curve_start_point(c) > 0) curve_at(c, t0, g.curve_start_point(c) - 1);
+    if (g.curve_end_point(c) > 0) curve_at(c, t1, g.curve_end_point(c) - 1);
+  }
+  return h;
+}
+
+}  // namespace sizemesh

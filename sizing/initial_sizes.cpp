@@ -1,0 +1,92 @@
+#include "sizing/initial_sizes.h"
+
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+
+#include "sizing/curvature_size.h"
+#include "sizing/proximity_size.h"
+#include "sizing/user_size.h"
+
+namespace sizemesh {
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double face_beta(const SizingParams& p, int face) {
+  auto it = p.face_beta.find(face);
+  return it == p.face_beta.end() ? p.beta : it->second;
+}
+
+// ln(beta) per triangle (its face's beta) and per edge (smallest over the faces it touches).
+void gradation_bounds(const BackgroundMesh& bg, const SizingParams& p, SizeMap& m) {
+  m.tri_log_beta.resize(bg.num_triangles());
+  for (int t = 0; t < bg.num_triangles(); ++t) m.tri_log_beta[t] = std::log(face_beta(p, bg.tri_face[t]));
+  std::unordered_map<uint64_t, int> index;
+  index.reserve(bg.edges.size() * 2);
+  auto key = [](int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+  };
+  for (int e = 0; e < static_cast<int>(bg.edges.size()); ++e) index.emplace(key(bg.edges[e][0], bg.edges[e][1]), e);
+  m.edge_log_beta.assign(bg.edges.size(), std::log(p.beta));
+  std::vector<bool> seen(bg.edges.size(), false);
+  for (int t = 0; t < bg.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int e = index.at(key(bg.tris[t][k], bg.tris[t][(k + 1) % 3]));
+      m.edge_log_beta[e] = seen[e] ? std::min(m.edge_log_beta[e], m.tri_log_beta[t]) : m.tri_log_beta[t];
+      seen[e] = true;
+    }
+}
+
+}  // namespace
+
+SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal) {
+  validate(p, diagonal, g.num_points(), g.num_curves(), g.num_faces());
+  SizeMap m;
+  m.h_min = p.resolved_h_min(diagonal);
+  m.h_max = p.resolved_h_max(diagonal);
+  double t = now();
+  m.h_curvature = curvature_sizes(g, bg, p);
+  m.t_curvature = now() - t;
+  t = now();
+  std::vector<double> h_face = face_proximity_sizes(g, bg, p);
+  std::vector<double> h_curve = curve_length_sizes(g, bg);
+  m.t_proximity = now() - t;
+  t = now();
+  std::vector<double> h_gap(bg.num_vertices(), kNoLimit);
+  if (p.local_proximity) {
+    double mu_max = p.mu_d;
+    for (const auto& [f, mu] : p.face_mu_d) mu_max = std::max(mu_max, mu);
+    h_gap = gap_sizes(g, bg, p, m.h_max * mu_max);
+  }
+  m.t_gap = now() - t;
+  t = now();
+  m.h_user = user_sizes(g, bg, p);
+  m.t_user = now() - t;
+
+  const int nv = bg.num_vertices();
+  m.h_proximity.resize(nv);
+  m.h_initial.resize(nv);
+  m.limit.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    m.h_proximity[v] = std::min({h_face[v], h_curve[v], h_gap[v]});
+    // h_a = max(h_min, min(h_d, h_c, h_u, h_max)), remembering which term won.
+    std::pair<double, Limit> best{m.h_max, Limit::HMax};
+    for (auto c : {std::make_pair(m.h_curvature[v], Limit::Curvature), std::make_pair(h_face[v], Limit::FaceProximity),
+                   std::make_pair(h_curve[v], Limit::CurveLength), std::make_pair(h_gap[v], Limit::Gap),
+                   std::make_pair(m.h_user[v], Limit::User)})
+      if (c.first < best.first) best = c;
+    if (best.first < m.h_min) best = {m.h_min, Limit::HMin};
+    m.h_initial[v] = best.first;
+    m.limit[v] = best.second;
+  }
+  m.h = m.h_initial;
+  gradation_bounds(bg, p, m);
+  return m;
+}
+
+}  // namespace sizemesh

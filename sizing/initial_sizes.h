@@ -1,0 +1,20 @@
+// The initial size map (paper 3.2 and 3.4):
+//   h_a = max(h_min, min(h_d, h_c, h_u, h_max))
+// with every term kept in the SizeMap, plus the ln(beta) bound of every
+// background edge (the smallest beta of the faces it touches) and triangle.
+//
+// Inputs:  g geometry, bg background mesh, p parameters (validated here),
+//          diagonal of the model's bounding box (for relative h_min, h_max)
+// Output:  SizeMap with h = h_initial.
+#pragma once
+
+#include "geometry/background_mesh.h"
+#include "geometry/geometry.h"
+#include "sizing/params.h"
+#include "sizing/size_map.h"
+
+namespace sizemesh {
+
+SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal);
+
+}  // namespace sizemesh

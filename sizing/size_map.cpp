@@ -1,0 +1,18 @@
+#include "sizing/size_map.h"
+
+namespace sizemesh {
+
+const char* limit_name(Limit l) {
+  switch (l) {
+    case Limit::HMax: return "h_max";
+    case Limit::Curvature: return "curvature";
+    case Limit::FaceProximity: return "face proximity (2A/l)";
+    case Limit::CurveLength: return "curve length";
+    case Limit::Gap: return "gap between faces";
+    case Limit::User: return "user size";
+    case Limit::HMin: return "h_min";
+  }
+  return "?";
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,178 @@
+#include "sizing/smooth.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+
+#include "sizing/lp_smooth.h"
+
+namespace sizemesh {
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Relative slack kept below a bound so that round-off never leaves a size above it.
+constexpr double kSlack = 1e-12;
+
+// Gradient of the linear interpolant on a triangle in its own plane (Eq. 11),
+// written with size differences from the corner `o0` so that equal sizes give
+// exactly zero and thin triangles lose no digits:
+//   |grad h|^2 = (a^2 G22 - 2 a b G12 + b^2 G11) / det G,
+// a = h_o1 - h_o0, b = h_o2 - h_o0, G the Gram matrix of e1 = p_o1 - p_o0,
+// e2 = p_o2 - p_o0 (this equals the paper's H^T K H).
+struct TriangleFrame {
+  double g11, g12, g22, det;
+  bool degenerate;
+};
+
+TriangleFrame frame(const BackgroundMesh& bg, int t, const int o[3]) {
+  const auto& tr = bg.tris[t];
+  const Vec3 e1 = bg.xyz[tr[o[1]]] - bg.xyz[tr[o[0]]], e2 = bg.xyz[tr[o[2]]] - bg.xyz[tr[o[0]]];
+  TriangleFrame f{e1.dot(e1), e1.dot(e2), e2.dot(e2), e1.cross(e2).squaredNorm(), false};
+  const double l2 = std::max({f.g11, f.g22, (e2 - e1).squaredNorm()});
+  f.degenerate = !(f.det > 1e-24 * l2 * l2);
+  return f;
+}
+
+double gradient2(const TriangleFrame& f, double a, double b) {
+  return std::max(0.0, (a * a * f.g22 - 2 * a * b * f.g12 + b * b * f.g11) / f.det);
+}
+
+// Paper 3.3 correction of one violating triangle, corners sorted h0 <= h1 <= h2,
+// L = ln(beta), a = h1 - h0, b = h2 - h0:
+// (1) lower h2 so that |grad h| = L: the quadratic in b has the root
+//     b = (a G12 + sqrt(det (G11 L^2 - a^2))) / G11, real whenever edge 0-1
+//     meets its bound (the edge stage guarantees it);
+// (2) beyond the paper: in an obtuse triangle the middle size can be the
+//     culprit (h2 is already below that root); then lower h1 the same way;
+// (3) the paper's second rule: lower h1 and h2 together to h0 + L * height_0;
+// (4) last resort: h1 = h2 = h0 (gradient zero).
+// Sizes are only lowered; returns true when one changed.
+bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vector<double>& h) {
+  const auto& tr = bg.tris[t];
+  int o[3] = {0, 1, 2};
+  std::sort(o, o + 3, [&](int a, int b) { return h[tr[a]] < h[tr[b]]; });
+  const TriangleFrame f = frame(bg, t, o);
+  if (f.degenerate) return false;
+  double& h0 = h[tr[o[0]]];
+  double& h1 = h[tr[o[1]]];
+  double& h2 = h[tr[o[2]]];
+  const double L = log_beta * (1 - kSlack);
+  auto lowered = [&](double& hv, double value) {
+    if (!(value >= h0) || !(value < hv)) return false;
+    hv = value;
+    return true;
+  };
+  const double a = h1 - h0, b = h2 - h0;
+  const double disc_a = f.det * (f.g11 * L * L - a * a);
+  if (disc_a >= 0 && lowered(h2, h0 + (a * f.g12 + std::sqrt(disc_a)) / f.g11)) return true;
+  const double disc_b = f.det * (f.g22 * L * L - b * b);
+  if (disc_b >= 0 && lowered(h1, h0 + (b * f.g12 + std::sqrt(disc_b)) / f.g22)) return true;
+  const double opposite2 = f.g11 + f.g22 - 2 * f.g12;  // |p2 - p1|^2; height_0 = 2A / |p2 - p1|
+  const double both = h0 + L * std::sqrt(f.det / opposite2);
+  const bool c1 = lowered(h1, std::min(h1, both)), c2 = lowered(h2, std::min(h2, both));
+  if (c1 || c2) {
+    if (gradient2(f, h1 - h0, h2 - h0) <= log_beta * log_beta) return true;
+  }
+  const bool d1 = lowered(h1, h0), d2 = lowered(h2, h0);
+  return c1 || c2 || d1 || d2;
+}
+
+}  // namespace
+
+void smooth_edges(const BackgroundMesh& bg, const std::vector<double>& edge_log_beta, std::vector<double>& h) {
+  std::vector<int> start, ids;
+  bg.vertex_edges(start, ids);
+  std::vector<double> w(bg.edges.size());
+  for (size_t e = 0; e < bg.edges.size(); ++e)
+    w[e] = edge_log_beta[e] * (bg.xyz[bg.edges[e][0]] - bg.xyz[bg.edges[e][1]]).norm() * (1 - kSlack);
+  // Multi-source Dijkstra: every vertex starts at its own size.
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  for (int v = 0; v < bg.num_vertices(); ++v) heap.emplace(h[v], v);
+  while (!heap.empty()) {
+    auto [d, v] = heap.top();
+    heap.pop();
+    if (d > h[v]) continue;
+    for (int i = start[v]; i < start[v + 1]; ++i) {
+      const int e = ids[i];
+      const int u = bg.edges[e][0] == v ? bg.edges[e][1] : bg.edges[e][0];
+      const double cand = d + w[e];
+      if (cand < h[u]) {
+        h[u] = cand;
+        heap.emplace(cand, u);
+      }
+    }
+  }
+}
+
+double triangle_gradient(const BackgroundMesh& bg, const std::vector<double>& h, int t) {
+  static const int o[3] = {0, 1, 2};
+  const TriangleFrame f = frame(bg, t, o);
+  if (f.degenerate) return -1;
+  const auto& tr = bg.tris[t];
+  return std::sqrt(gradient2(f, h[tr[1]] - h[tr[0]], h[tr[2]] - h[tr[0]]));
+}
+
+SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
+  SmoothStats s;
+  m.h = m.h_initial;
+  const int nt = bg.num_triangles();
+  for (int t = 0; t < nt; ++t) s.degenerate_triangles += triangle_gradient(bg, m.h, t) < 0;
+  for (int round = 0;; ++round) {
+    double t0 = now();
+    if (round == 0 && solver == EdgeSolver::LpSolve) smooth_edges_lp(bg, m.edge_log_beta, m.h);
+    else smooth_edges(bg, m.edge_log_beta, m.h);
+    s.t_edge += now() - t0;
+    t0 = now();
+    int corrected = 0;
+    for (int t = 0; t < nt; ++t) {
+      const double lb = m.tri_log_beta[t];
+      if (triangle_gradient(bg, m.h, t) > lb) {
+        // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
+        if (round < 50) corrected += correct_triangle(bg, t, lb, m.h);
+        else {
+          const auto& tr = bg.tris[t];
+          const double lo = std::min({m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]});
+          for (int v : tr) m.h[v] = lo;
+          ++corrected;
+        }
+      }
+    }
+    s.t_triangle += now() - t0;
+    s.triangle_corrections += corrected;
+    s.rounds = round + 1;
+    if (corrected == 0) break;
+  }
+  for (int v = 0; v < bg.num_vertices(); ++v)
+    if (m.h[v] < m.h_initial[v]) {
+      ++s.lowered;
+      s.max_reduction = std::max(s.max_reduction, m.h_initial[v] / m.h[v]);
+    }
+  return s;
+}
+
+GradationCheck check_gradation(const BackgroundMesh& bg, const SizeMap& m) {
+  GradationCheck c;
+  for (size_t e = 0; e < bg.edges.size(); ++e) {
+    const int a = bg.edges[e][0], b = bg.edges[e][1];
+    const double l = (bg.xyz[a] - bg.xyz[b]).norm();
+    const double dh = std::abs(m.h[a] - m.h[b]);
+    if (dh == 0) continue;
+    c.max_edge_ratio = std::max(c.max_edge_ratio, l > 0 ? dh / (m.edge_log_beta[e] * l) : INFINITY);
+  }
+  c.triangle_ratio.assign(bg.num_triangles(), 0.0);
+  for (int t = 0; t < bg.num_triangles(); ++t) {
+    const double g = triangle_gradient(bg, m.h, t);
+    if (g < 0) continue;
+    c.triangle_ratio[t] = m.tri_log_beta[t] > 0 ? g / m.tri_log_beta[t] : (g > 0 ? INFINITY : 0);
+    c.max_triangle_ratio = std::max(c.max_triangle_ratio, c.triangle_ratio[t]);
+  }
+  return c;
+}
+
+}  // namespace sizemesh

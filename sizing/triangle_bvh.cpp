@@ -1,0 +1,116 @@
+#include "sizing/triangle_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sizemesh {
+
+TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& tris)
+    : xyz_(xyz), tris_(tris) {
+  const int n = static_cast<int>(tris.size());
+  order_.resize(n);
+  centroid_.resize(n);
+  for (int t = 0; t < n; ++t) {
+    order_[t] = t;
+    centroid_[t] = (xyz[tris[t][0]] + xyz[tris[t][1]] + xyz[tris[t][2]]) / 3.0;
+  }
+  nodes_.reserve(2 * n + 1);
+  if (n > 0) build(0, n);
+}
+
+// Median split along the longest axis of the centroids' box.
+int TriangleBVH::build(int begin, int end) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Eigen::AlignedBox3d box, cbox;
+  for (int i = begin; i < end; ++i) {
+    for (int k = 0; k < 3; ++k) box.extend(xyz_[tris_[order_[i]][k]]);
+    cbox.extend(centroid_[order_[i]]);
+  }
+  nodes_[id].box = box;
+  if (end - begin <= 4) {
+    nodes_[id].begin = begin;
+    nodes_[id].end = end;
+    return id;
+  }
+  int axis;
+  cbox.sizes().maxCoeff(&axis);
+  const int mid = (begin + end) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int a, int b) { return centroid_[a][axis] < centroid_[b][axis]; });
+  const int l = build(begin, mid);
+  const int r = build(mid, end);
+  nodes_[id].left = l;
+  nodes_[id].right = r;
+  return id;
+}
+
+namespace {
+// Slab test: entry distance of the ray into the box, or +inf when missed.
+// Axis-parallel directions are handled apart (0 * inf would give NaN).
+double ray_box(const Eigen::AlignedBox3d& b, const Vec3& o, const Vec3& d, const Vec3& inv, double t_max) {
+  double t0 = 0, t1 = t_max;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0) {
+      if (o[k] < b.min()[k] || o[k] > b.max()[k]) return INFINITY;
+      continue;
+    }
+    double a = (b.min()[k] - o[k]) * inv[k], c = (b.max()[k] - o[k]) * inv[k];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, c);
+    if (t0 > t1) return INFINITY;
+  }
+  return t0;
+}
+
+// Moller-Trumbore; returns the distance or +inf. Hits on a triangle's edges
+// and corners count (a ray along a face's rim lands exactly on them).
+double ray_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a, p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-300) return INFINITY;
+  const double inv = 1.0 / det;
+  const Vec3 s = o - a;
+  const double u = s.dot(p) * inv;
+  constexpr double eps = 1e-9;
+  if (u < -eps || u > 1 + eps) return INFINITY;
+  const Vec3 q = s.cross(e1);
+  const double v = d.dot(q) * inv;
+  if (v < -eps || u + v > 1 + eps) return INFINITY;
+  const double t = e2.dot(q) * inv;
+  return t >= 0 ? t : INFINITY;
+}
+}  // namespace
+
+TriangleBVH::Hit TriangleBVH::ray(const Vec3& origin, const Vec3& dir, double t_max,
+                                  const std::function<bool(int)>& accept) const {
+  Hit best;
+  best.t = t_max;
+  if (nodes_.empty()) return best;
+  const Vec3 inv(1.0 / dir.x(), 1.0 / dir.y(), 1.0 / dir.z());
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top) {
+    const Node& n = nodes_[stack[--top]];
+    if (ray_box(n.box, origin, dir, inv, best.t) == INFINITY) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const int t = order_[i];
+        const auto& tr = tris_[t];
+        const double d = ray_triangle(origin, dir, xyz_[tr[0]], xyz_[tr[1]], xyz_[tr[2]]);
+        if (d < best.t && accept(t)) {
+          best.t = d;
+          best.tri = t;
+        }
+      }
+    } else if (top + 2 <= 128) {
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
+  return best;
+}
+
+}  // namespace sizemesh

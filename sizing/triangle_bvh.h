@@ -1,0 +1,41 @@
+// Bounding-volume hierarchy over 3D triangles: ray casting with a filter.
+//
+// Inputs:  xyz #V points, tris #T triangles (vertex ids)
+// Queries: closest hit of a ray within [0, t_max] among triangles the filter accepts.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+class TriangleBVH {
+ public:
+  TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& tris);
+
+  struct Hit {
+    int tri = -1;
+    double t = 0;  // distance along the (unit) direction
+  };
+  // dir must be a unit vector. `accept(tri)` filters candidate triangles.
+  Hit ray(const Vec3& origin, const Vec3& dir, double t_max, const std::function<bool(int)>& accept) const;
+
+ private:
+  struct Node {
+    Eigen::AlignedBox3d box;
+    int left = -1, right = -1;  // children; -1 for a leaf
+    int begin = 0, end = 0;     // leaf range in order_
+  };
+  int build(int begin, int end);
+
+  const std::vector<Vec3>& xyz_;
+  const std::vector<std::array<int, 3>>& tris_;
+  std::vector<int> order_;
+  std::vector<Vec3> centroid_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace sizemesh

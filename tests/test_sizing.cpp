@@ -1,0 +1,281 @@
+// Size map (paper 3.2-3.4): initial sizes on analytic shapes, exact gradation
+// smoothing on every shared model, local controls where set and nowhere else.
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "geometry/occt_model.h"
+#include "sizing/initial_sizes.h"
+#include "sizing/lp_smooth.h"
+#include "sizing/proximity_size.h"
+#include "sizing/smooth.h"
+#include "tests/cli_runner.h"
+#include "tests/test_models.h"
+
+using namespace sizemesh;
+
+namespace {
+
+// Only curvature counts: no proximity, no gaps, bounds far away.
+SizingParams curvature_only(double phi_deg) {
+  SizingParams p;
+  p.phi_c_deg = phi_deg;
+  p.mu_d = 1e-9;  // huge proximity sizes
+  p.local_proximity = false;
+  p.h_min = 1e-9;
+  p.h_max = 1e9;
+  return p;
+}
+
+struct Sized {
+  Model model;
+  BackgroundMesh bg;
+  SizeMap m;
+};
+
+Sized size_shape(const TopoDS_Shape& shape, const SizingParams& p) {
+  Model model = model_from_shape(shape);
+  BackgroundMesh bg = build_background_mesh(model);
+  SizeMap m = initial_sizes(model, bg, p, model.info().diagonal());
+  return {std::move(model), std::move(bg), std::move(m)};
+}
+
+}  // namespace
+
+TEST_CASE("sphere of radius r gives h_c = 2 r sin(phi_c / 2) at every vertex, poles included") {
+  const double r = 2.5;
+  for (double phi : {5.0, 20.0}) {
+    Sized s = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), curvature_only(phi));
+    const double expected = 2 * r * std::sin(phi * M_PI / 360);
+    for (int v = 0; v < s.bg.num_vertices(); ++v) {
+      INFO("vertex " << v << " dim " << int(s.bg.dim[v]));
+      CHECK(s.m.h_curvature[v] == Approx(expected).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("cylinder of radius r gives h_c = 2 r sin(phi_c / 2) on its side and no limit inside its flat caps") {
+  const double r = 1.5;
+  Sized s = size_shape(BRepPrimAPI_MakeCylinder(r, 4.0).Shape(), curvature_only(5.0));
+  const double expected = 2 * r * std::sin(5.0 * M_PI / 360);
+  int side = 0, cap_inside = 0;
+  for (int v = 0; v < s.bg.num_vertices(); ++v) {
+    const bool on_side = s.bg.dim[v] != 2 || s.model.face_period_u(s.bg.entity[v]) > 0;
+    if (on_side) {
+      ++side;
+      CHECK(s.m.h_curvature[v] == Approx(expected).epsilon(0.01));
+    } else {
+      ++cap_inside;
+      CHECK(s.m.h_curvature[v] == kNoLimit);
+    }
+  }
+  CHECK(side > 0);
+}
+
+TEST_CASE("a box with one tiny edge grades away from it at exactly the bound") {
+  // A quadrilateral prism whose profile has one edge of length 0.01.
+  BRepBuilderAPI_MakePolygon profile;
+  for (const gp_Pnt& q : {gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 10, 0), gp_Pnt(0.01, 10, 0), gp_Pnt(0, 10, 0)})
+    profile.Add(q);
+  profile.Close();
+  TopoDS_Shape prism = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(profile.Wire()).Face(), gp_Vec(0, 0, 10)).Shape();
+  SizingParams p;
+  p.local_proximity = false;
+  p.h_min = 1e-4;
+  p.h_max = 5;  // large enough that growth from the tiny face, not h_max, caps the big faces
+  Sized s = size_shape(prism, p);
+  REQUIRE(s.model.info().solids == 1);
+  // The narrow side face along the tiny edge (0.01 x 10) sets the smallest
+  // size: 2 A / l / mu_d = 2 * 0.1 / 20.02 / 2.
+  double h_tiny = kNoLimit;
+  for (int v = 0; v < s.bg.num_vertices(); ++v) h_tiny = std::min(h_tiny, s.m.h_initial[v]);
+  CHECK(h_tiny == Approx(0.1 / 20.02).epsilon(1e-9));
+  // Edge stage alone: along every edge leaving the smallest size the growth is at
+  // most ln(beta) l, and exactly that where no shorter path reaches the far end.
+  std::vector<double> h = s.m.h_initial;
+  smooth_edges(s.bg, s.m.edge_log_beta, h);
+  int exact = 0;
+  for (size_t e = 0; e < s.bg.edges.size(); ++e) {
+    const int a = s.bg.edges[e][0], b = s.bg.edges[e][1];
+    for (auto [lo, hi] : {std::make_pair(a, b), std::make_pair(b, a)}) {
+      if (h[lo] != h_tiny || s.m.h_initial[hi] <= h_tiny + std::log(1.2) * (s.bg.xyz[a] - s.bg.xyz[b]).norm()) continue;
+      const double bound = std::log(1.2) * (s.bg.xyz[a] - s.bg.xyz[b]).norm();
+      CHECK(h[hi] - h[lo] <= bound * (1 + 1e-12));
+      exact += std::abs(h[hi] - h[lo] - bound) <= 1e-9 * bound;
+    }
+  }
+  CHECK(exact >= 3);
+  smooth(s.bg, s.m);
+  const GradationCheck c = check_gradation(s.bg, s.m);
+  CHECK(c.max_edge_ratio <= 1 + 1e-9);
+  CHECK(c.max_edge_ratio >= 1 - 1e-6);  // the bound is reached, not just respected
+  CHECK(c.max_triangle_ratio <= 1 + 1e-9);
+}
+
+TEST_CASE("a thin plate gets the local proximity size gap / mu_d on both its large faces") {
+  const double t = 0.1;
+  Model m = model_from_shape(BRepPrimAPI_MakeBox(10.0, 10.0, t).Shape());
+  BackgroundMesh bg = build_background_mesh(m);
+  SizingParams p;
+  const std::vector<double> gap = gap_sizes(m, bg, p, 100.0);
+  int checked = 0;
+  for (int v = 0; v < bg.num_vertices(); ++v) {
+    const Vec3& x = bg.xyz[v];
+    const bool inner = x.x() > 1e-9 && x.x() < 10 - 1e-9 && x.y() > 1e-9 && x.y() < 10 - 1e-9;
+    if (!inner) continue;  // the plate's rim: rays graze the side faces
+    ++checked;
+    CHECK(gap[v] == Approx(t / 2).epsilon(1e-9));
+  }
+  CHECK(checked == 0);  // BRepMesh puts no nodes inside a planar rectangle ...
+  for (int v = 0; v < bg.num_vertices(); ++v) CHECK(gap[v] == Approx(t / 2).epsilon(1e-9));  // ... the rim sees the gap
+}
+
+TEST_CASE("two parallel blocks close together get gap / mu_d between them, and only with gaps on") {
+  const double gap = 0.1;
+  TopoDS_Compound pair;
+  BRep_Builder b;
+  b.MakeCompound(pair);
+  b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 10.0, 10.0, 1.0).Shape());
+  b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 1.0 + gap), 10.0, 10.0, 1.0).Shape());
+  SizingParams p;
+  p.h_max = 5;
+  Sized on = size_shape(pair, p);
+  p.local_proximity = false;
+  Sized off = size_shape(pair, p);
+  REQUIRE(on.model.info().solids == 2);
+  int facing = 0;
+  for (int v = 0; v < on.bg.num_vertices(); ++v) {
+    const Vec3& x = on.bg.xyz[v];
+    const bool between = std::abs(x.z() - 1.0) < 1e-12 || std::abs(x.z() - 1.0 - gap) < 1e-12;
+    if (!between) continue;
+    ++facing;
+    CHECK(on.m.h_proximity[v] == Approx(gap / 2).epsilon(1e-9));
+    CHECK(on.m.limit[v] == Limit::Gap);
+    CHECK(off.m.h_proximity[v] > 0.4);
+  }
+  CHECK(facing >= 8);
+}
+
+TEST_CASE("smoothed map meets the edge and triangle bounds on every shared model, lowering only, never below h_min") {
+  for (const auto& sm : test::shared_models()) {
+    SECTION(sm.file) {
+      Model model = load_model(test::model_path(sm.file));
+      BackgroundMesh bg = build_background_mesh(model);
+      SizeMap m = initial_sizes(model, bg, SizingParams{}, model.info().diagonal());
+      smooth(bg, m);
+      const GradationCheck c = check_gradation(bg, m);
+      CHECK(c.max_edge_ratio <= 1 + 1e-9);
+      CHECK(c.max_triangle_ratio <= 1 + 1e-9);
+      for (int v = 0; v < bg.num_vertices(); ++v) {
+        CHECK(m.h[v] <= m.h_initial[v]);
+        CHECK(m.h[v] >= m.h_min * (1 - 1e-12));
+        CHECK(m.h_initial[v] <= m.h_max);
+        CHECK(std::isfinite(m.h[v]));
+      }
+    }
+  }
+}
+
+TEST_CASE("lp_solve and the exact solver give the same edge-stage sizes to 1e-9") {
+  for (const char* file : {"onera_m6_wing.stp", "cylinder_head_fins.stp"}) {
+    Model model = load_model(test::model_path(file));
+    BackgroundMesh bg = build_background_mesh(model);
+    SizeMap m = initial_sizes(model, bg, SizingParams{}, model.info().diagonal());
+    std::vector<double> exact = m.h_initial, lp = m.h_initial;
+    smooth_edges(bg, m.edge_log_beta, exact);
+    smooth_edges_lp(bg, m.edge_log_beta, lp);
+    double worst = 0;
+    for (int v = 0; v < bg.num_vertices(); ++v) worst = std::max(worst, std::abs(exact[v] - lp[v]) / exact[v]);
+    INFO(file);
+    CHECK(worst <= 1e-9);
+  }
+}
+
+TEST_CASE("per-face beta and prescribed sizes take effect where set and nowhere else") {
+  SizingParams p;
+  p.local_proximity = false;
+  p.face_beta[1] = 1.5;
+  p.face_size[2] = UserSize{0.05, ""};
+  p.curve_size[5] = UserSize{0, "0.02 + 0.001 * x"};
+  p.point_size[7] = UserSize{0.01, ""};
+  Sized s = size_shape(BRepPrimAPI_MakeBox(2.0, 3.0, 4.0).Shape(), p);
+  // beta: a triangle of face 1 has ln 1.5; an edge inside face 1 too; an edge on its boundary takes ln 1.2.
+  for (int t = 0; t < s.bg.num_triangles(); ++t)
+    CHECK(s.m.tri_log_beta[t] == Approx(std::log(s.bg.tri_face[t] == 1 ? 1.5 : 1.2)));
+  for (size_t e = 0; e < s.bg.edges.size(); ++e) {
+    const int a = s.bg.edges[e][0];
+    const bool inside_face1 = s.bg.edge_curve[e] == 0 && s.bg.dim[a] == 2 && s.bg.entity[a] == 1;
+    const bool inside_other = s.bg.edge_curve[e] == 0 && s.bg.dim[a] == 2 && s.bg.entity[a] != 1;
+    if (inside_face1) CHECK(s.m.edge_log_beta[e] == Approx(std::log(1.5)));
+    if (inside_other || s.bg.edge_curve[e] != 0) CHECK(s.m.edge_log_beta[e] == Approx(std::log(1.2)));
+  }
+  // Prescribed sizes: exactly the vertices on face 2, on curve 5 (with its end points) and point 7.
+  const auto& face2 = s.bg.patches[1].vertex;
+  for (int v = 0; v < s.bg.num_vertices(); ++v) {
+    const bool on_face2 = std::find(face2.begin(), face2.end(), v) != face2.end();
+    const bool on_curve5 = (s.bg.dim[v] == 1 && s.bg.entity[v] == 5) ||
+                           v == s.model.curve_start_point(5) - 1 || v == s.model.curve_end_point(5) - 1;
+    double expected = kNoLimit;
+    if (on_face2) expected = std::min(expected, 0.05);
+    if (on_curve5) expected = std::min(expected, 0.02 + 0.001 * s.bg.xyz[v].x());
+    if (v == 6) expected = std::min(expected, 0.01);
+    INFO("vertex " << v);
+    if (expected == kNoLimit) CHECK(s.m.h_user[v] == kNoLimit);
+    else CHECK(s.m.h_user[v] == Approx(expected).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("bad sizing parameters give one clear error and a non-zero exit") {
+  const std::string wing = test::model_path("onera_m6_wing.stp");
+  const std::string dir = std::filesystem::temp_directory_path().string() + "/sizemesh_cfg_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  auto config = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/" + name) << text;
+    return dir + "/" + name;
+  };
+  auto expect_error = [&](const std::string& args, const std::string& words) {
+    const auto r = test::run_sizemesh(wing + " -q " + args);
+    INFO(args << " -> " << r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err_lines() == 1);
+    CHECK(r.err.find(words) != std::string::npos);
+  };
+  expect_error("--beta 0.9", "beta must be at least 1");
+  expect_error("--phi-c 0", "phi_c must be in (0, 180)");
+  expect_error("--phi-c 180", "phi_c must be in (0, 180)");
+  expect_error("--mu-d 0", "mu_d must be positive");
+  expect_error("--mu-d -2", "mu_d must be positive");
+  expect_error("--h-min 10 --h-max 1", "is larger than h_max");
+  expect_error("--config " + config("id.json", R"({"face_size": {"99": 1.0}})"), "names face 99 but the model has 11");
+  expect_error("--config " + config("expr.json", R"({"face_size": {"1": "2 * (x + "}})"), "malformed size expression");
+  expect_error("--config " + config("neg.json", R"({"face_size": {"1": "x - 1e9"}})"), "sizes must be positive");
+  expect_error("--config " + config("json.json", R"({"beta": 1.2,, })"), "not valid JSON");
+  expect_error("--config " + config("key.json", R"({"betta": 1.2})"), "unknown key 'betta'");
+  expect_error("--config " + config("beta.json", R"({"face_beta": {"2": 0.5}})"), "face 2: beta must be at least 1");
+  expect_error("--config " + dir + "/missing.json", "cannot read config file");
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("the example config is accepted and its local sizes reach the background fields") {
+  const std::string out = std::filesystem::temp_directory_path().string() + "/sizemesh_cfg_bg_" +
+                          std::to_string(::getpid()) + ".vtu";
+  const auto r = test::run_sizemesh(std::string(SIZEMESH_EXAMPLES_DIR) + "/onera_m6_wing.stp -q --config " +
+                                    SIZEMESH_EXAMPLES_DIR + "/sizing.json --background " + out);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string vtu = test::slurp(out);
+  for (const char* field : {"h_curvature", "h_proximity", "h_user", "h_initial", "h_smoothed", "gradient_ratio"})
+    CHECK(vtu.find(field) != std::string::npos);
+  std::filesystem::remove(out);
+}
