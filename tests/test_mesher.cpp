@@ -244,3 +244,51 @@ TEST_CASE("shared models mesh with no failed face, watertight when closed", "[me
     }
   }
 }
+
+TEST_CASE("shared models at a resolving size: CAD area, conforming sizes, good angles", "[mesher][models]") {
+  // With h = diagonal / 200 the size resolves the models' curvature, so the
+  // area and size checks are fair; at diagonal / 40 faces narrower than h and
+  // curves shorter than h force short edges and thin triangles whatever the mesher does.
+  // Triangles with a corner on a B-rep point or curve can be forced by the
+  // CAD (corner angles below 12 degrees, short curves next to long ones, faces
+  // narrower than h); triangles inside the faces are the mesher's own.
+  struct Case {
+    const char* file;
+    bool all_angles;  // the CAD allows the angle thresholds on every triangle
+  };
+  const Case cases[] = {{"onera_m6_wing.stp", false},      {"cone70_capsule_sting.step", true},
+                        {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
+                        {"cylinder_head_fins.stp", true},  {"steering_knuckle.stp", false},
+                        {"d150_fuselage.igs", true},       {"f16_openvsp.stp", false}};
+  for (const Case& c : cases) {
+    SECTION(c.file) {
+      const Model model = load_model(std::string(SIZEMESH_MODELS_DIR) + "/" + c.file);
+      const UniformSize h(model.info().diagonal() / 200);
+      const SurfaceMesh m = mesh_surface(model, h);
+      const MeshQuality q = mesh_quality(m, model, h);
+      REQUIRE(m.failures.empty());
+      int inner = 0, inner_12 = 0, inner_24 = 0;
+      for (size_t t = 0; t < m.tris.size(); ++t) {
+        bool on_curve = false;
+        for (int v : m.tris[t]) on_curve = on_curve || m.node_dim[v] < 2;
+        if (on_curve) continue;
+        ++inner;
+        if (q.min_angle[t] < 12) ++inner_12;
+        if (q.min_angle[t] < 24) ++inner_24;
+      }
+      const double area = cad_area(model);
+      INFO(c.file << ": " << q.triangles << " triangles, below 12 deg " << q.below_12 << ", below 24 deg "
+                  << q.below_24 << "; inside faces " << inner << ", below 12 deg " << inner_12
+                  << ", below 24 deg " << inner_24 << "; conformity " << q.size_conformity << "; area "
+                  << q.area << " vs CAD " << area);
+      CHECK(std::abs(q.area - area) <= 0.005 * area);
+      CHECK(q.size_conformity >= 0.90);
+      CHECK(inner_12 == 0);
+      CHECK(inner_24 <= 0.005 * inner);
+      if (c.all_angles) {
+        CHECK(q.below_12 <= 0.0005 * q.triangles);
+        CHECK(q.below_24 <= 0.005 * q.triangles);
+      }
+    }
+  }
+}
