@@ -169,12 +169,6 @@ double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2&
   return std::sqrt(best);
 }
 
-bool segment_hits_edge(const SizeQuery::Face& f, const Vec2& a, const Vec2& b, int e) {
-  const SizeQuery::Tri& T = f.tris[f.bedges[e].t];
-  const int k = f.bedges[e].k;
-  return segments_touch(a, b, T.uv[(k + 1) % 3], T.uv[(k + 2) % 3]);
-}
-
 [[noreturn]] void throw_bad_face(int face, int num_faces) {
   throw Error("size query: face " + std::to_string(face) + " does not exist (the background mesh has " +
               std::to_string(num_faces) + " faces)");
@@ -613,8 +607,7 @@ SizeQuery::Hit SizeQuery::clamp_to_boundary(const Face& f, const Vec2& p, int t,
   auto beyond = [&](int e) { return orient(tris[be[e].t], be[e].k, p.x(), p.y()) < 0; };
   auto fallback = [&](int visited) {
     st.visited += visited;
-    ++st.fallbacks;
-    return brute_force(f, p, st);
+    return go_around(f, p, t, st);
   };
   int e = f.bslot[3 * t + k];
   int visited = 0;
@@ -673,6 +666,105 @@ SizeQuery::Hit SizeQuery::clamp_to_boundary(const Face& f, const Vec2& p, int t,
     return {T.h[(be[e_out].k + 1) % 3], be[e_out].t};
   }
   return fallback(visited);
+}
+
+// Going around an obstacle (Bug2): walk straight along the segment m from S,
+// the centroid of triangle t0, to the point. Blocked by a boundary edge at H,
+// follow the boundary chain (domain on the left) and leave it at the first edge
+// that crosses m nearer the point than H with the point on its inner side.
+// Back at the blocking edge without leaving, the point cannot be reached: it is
+// outside the domain (in a hole or beyond the outer loop), and the nearest
+// point of the domain lies on the loop just followed. Only adjacency and the
+// boundary links are used; a step budget ends in the brute-force scan.
+SizeQuery::Hit SizeQuery::go_around(const Face& f, const Vec2& p, int t0, QueryStats& st) const {
+  const Tri* tris = f.tris.data();
+  const BEdge* be = f.bedges.data();
+  const Tri& T0 = tris[t0];
+  const Vec2 S = (T0.uv[0] + T0.uv[1] + T0.uv[2]) / 3;
+  auto side = [&](const Vec2& v) { return orient3(S, p, v); };  // > 0: left of m
+  const int budget = 4 * (static_cast<int>(f.tris.size()) + static_cast<int>(f.bedges.size())) + 64;
+  int visited = 0, t = t0, entry = -1;
+  double dH = std::numeric_limits<double>::infinity();
+  auto give_up = [&]() {
+    st.visited += visited;
+    ++st.fallbacks;
+    return brute_force(f, p, st);
+  };
+  for (;;) {
+    if (++visited > budget) return give_up();
+    const Tri& T = tris[t];
+    const double o[3] = {orient(T, 0, p.x(), p.y()), orient(T, 1, p.x(), p.y()), orient(T, 2, p.x(), p.y())};
+    if (o[0] >= 0 && o[1] >= 0 && o[2] >= 0 && (!(T.base & kDegenerate) || within_extent(T, p))) {
+      st.visited += visited;
+      return {interpolate(T, p, o[0], o[1], o[2]), t};
+    }
+    // Exit edge of m: the edge other than the entry whose ends straddle m.
+    int k = -1;
+    if (entry >= 0) {
+      const int c = entry;
+      const double sv = side(T.uv[c]), s1 = side(T.uv[(c + 1) % 3]);
+      k = (sv > 0) == (s1 > 0) && sv != 0 ? (c + 1) % 3 : (c + 2) % 3;
+    } else {
+      for (int j = 0; j < 3 && k < 0; ++j) {
+        const double a = side(T.uv[(j + 1) % 3]), b = side(T.uv[(j + 2) % 3]);
+        if (o[j] < 0 && ((a <= 0 && b >= 0) || (a >= 0 && b <= 0))) k = j;
+      }
+    }
+    if (k < 0 || o[k] >= 0) {  // round-off: leave by any edge the point lies beyond
+      k = -1;
+      for (int j = 0; j < 3; ++j)
+        if (j != entry && o[j] < 0 && (k < 0 || o[j] < o[k])) k = j;
+      if (k < 0) return give_up();
+    }
+    if (T.adj[k] >= 0) {
+      entry = T.back[k];
+      t = T.adj[k];
+      continue;
+    }
+    // Blocked at H on boundary edge (t, k): follow the boundary.
+    const int hit = f.bslot[3 * t + k];
+    {
+      const Vec2 &P = T.uv[(k + 1) % 3], &Q = T.uv[(k + 2) % 3];
+      const double a = side(P), b = side(Q);
+      const Vec2 H = a != b ? Vec2(P + a / (a - b) * (Q - P)) : P;
+      dH = std::min(dH, (H - p).norm());
+    }
+    int e = hit, best_e = hit;
+    double best_d2 = std::numeric_limits<double>::infinity(), best_s = 0;
+    bool left = false;
+    for (;;) {
+      const Tri& E = tris[be[e].t];
+      const Vec2 &P = E.uv[(be[e].k + 1) % 3], &Q = E.uv[(be[e].k + 2) % 3];
+      double s, d2;
+      project_segment(P, Q, p, s, d2);
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best_e = e;
+        best_s = s;
+      }
+      if (e != hit && orient(E, be[e].k, p.x(), p.y()) > 0) {
+        const double a = side(P), b = side(Q);
+        if ((a <= 0 && b >= 0) || (a >= 0 && b <= 0)) {
+          const Vec2 X = a != b ? Vec2(P + a / (a - b) * (Q - P)) : P;
+          if ((X - S).dot(p - S) >= 0 && (X - p).norm() < dH) {
+            t = be[e].t;
+            entry = be[e].k;
+            left = true;
+            break;
+          }
+        }
+      }
+      e = be[e].next;
+      if (e < 0 || ++visited > budget) return give_up();
+      if (e == hit) break;
+    }
+    if (left) continue;
+    // Unreachable: outside; the nearest point of the loop.
+    st.visited += visited;
+    ++st.outside;
+    const Tri& B = tris[be[best_e].t];
+    return {lerp(B.h[(be[best_e].k + 1) % 3], B.h[(be[best_e].k + 2) % 3], best_s), be[best_e].t};
+  }
 }
 
 // Brute force: the first non-degenerate triangle containing the point, else a

@@ -24,8 +24,14 @@
 //   4. a walk blocked by the patch boundary follows the boundary to the nearest
 //      boundary point; a point slightly outside the domain (trimming tolerance,
 //      chord sagitta, round-off) gets the size there, clamped, never extrapolated;
-//   5. a walk that exceeds its step limit (cycles in folded uv patches), or is
-//      blocked without being clearly outside, ends in a counted brute-force scan.
+//   5. a walk blocked by the boundary of a non-convex domain (notches, slots,
+//      holes) without being clearly outside goes around the obstacle: a straight
+//      walk along the segment to the point that follows the boundary chain when
+//      blocked and leaves it nearer the point (the Bug2 rule of path planning);
+//      coming back to where it was blocked proves the point outside, and it gets
+//      the size at the nearest point of that boundary loop;
+//   6. a walk that exceeds its step limit (cycles in folded uv patches) or meets
+//      a broken boundary chain ends in a counted brute-force scan.
 // A face with no background triangles, a face id out of range or a non-finite
 // uv makes locate()/at() throw sizemesh::Error naming the face (no surface
 // evaluator is available here to fall back on).
@@ -100,6 +106,7 @@ class SizeQuery final : public SizeFunction {
   const Face& face_data(int face) const;
   Hit walk(const Face& f, const Vec2& p, int start, QueryStats& st) const;
   Hit clamp_to_boundary(const Face& f, const Vec2& p, int t, int k, QueryStats& st) const;
+  Hit go_around(const Face& f, const Vec2& p, int t, QueryStats& st) const;
   Hit brute_force(const Face& f, const Vec2& p, QueryStats& st) const;
   void count(const QueryStats& one) const;
 
