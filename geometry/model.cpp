@@ -18,10 +18,13 @@
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeReal.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <ShapeBuild_ReShape.hxx>
+
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 
@@ -83,7 +86,21 @@ TopoDS_Shape solids_from_closed_shells(const TopoDS_Shape& sewn) {
   return any_solid ? TopoDS_Shape(out) : sewn;
 }
 
-OcctFace make_face_data(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges) {
+double face_area_exact(const TopoDS_Shape& face) {
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(face, props);
+  return std::abs(props.Mass());
+}
+
+// Exact areas of the faces in `faces`, computed in parallel (the costliest part of loading).
+std::vector<double> face_areas(const TopTools_IndexedMapOfShape& faces) {
+  std::vector<double> area(faces.Extent());
+  tbb::parallel_for(0, faces.Extent(), [&](int i) { area[i] = face_area_exact(faces(i + 1)); });
+  return area;
+}
+
+OcctFace make_face_data(const TopoDS_Face& face, double area, const TopTools_IndexedMapOfShape& edges,
+                        const std::vector<OcctCurve>& curves) {
   OcctFace d;
   d.reversed = face.Orientation() == TopAbs_REVERSED;
   TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
@@ -95,9 +112,7 @@ OcctFace make_face_data(const TopoDS_Face& face, const TopTools_IndexedMapOfShap
     if (d.surface->IsUPeriodic()) d.period_u = d.surface->UPeriod();
     if (d.surface->IsVPeriodic()) d.period_v = d.surface->VPeriod();
   }
-  GProp_GProps props;
-  BRepGProp::SurfaceProperties(fwd, props);
-  d.area = std::abs(props.Mass());
+  d.area = area;
   // Boundary loops, outer first, edges in traversal order. The boundary length
   // for the proximity size (paper 3.2.2) leaves out seams and poles: they are
   // not borders of the face.
@@ -116,10 +131,7 @@ OcctFace make_face_data(const TopoDS_Face& face, const TopTools_IndexedMapOfShap
       const bool seam = BRep_Tool::IsClosed(e, fwd);
       use.side = seam && use.reversed ? 1 : 0;
       loop.push_back(use);
-      if (!seam && !BRep_Tool::Degenerated(e)) {
-        BRepAdaptor_Curve c(e);
-        d.boundary_length += GCPnts_AbscissaPoint::Length(c);
-      }
+      if (!seam && !BRep_Tool::Degenerated(e)) d.boundary_length += curves[use.curve - 1].length;
     }
     if (!loop.empty()) d.loops.push_back(std::move(loop));
   }
@@ -163,15 +175,18 @@ OcctCurve make_curve_data(const TopoDS_Edge& edge_any, const TopoDS_Shape& shape
 }
 
 // Faces of zero area (caps collapsed to a line or point) cannot carry a mesh.
-TopoDS_Shape remove_zero_area_faces(const TopoDS_Shape& shape, double diagonal, int& removed) {
+// Faces are looked up in `area` (exact areas of the shape's faces) and
+// recorded there for reuse.
+TopoDS_Shape remove_zero_area_faces(const TopoDS_Shape& shape, double diagonal, int& removed,
+                                    TopTools_DataMapOfShapeReal& area) {
   Handle(ShapeBuild_ReShape) reshape = new ShapeBuild_ReShape;
   removed = 0;
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  const std::vector<double> a = face_areas(faces);
   for (int i = 1; i <= faces.Extent(); ++i) {
-    GProp_GProps props;
-    BRepGProp::SurfaceProperties(faces(i), props);
-    if (std::abs(props.Mass()) <= 1e-14 * diagonal * diagonal) {
+    area.Bind(faces(i), a[i - 1]);
+    if (a[i - 1] <= 1e-14 * diagonal * diagonal) {
       reshape->Remove(faces(i));
       ++removed;
     }
@@ -204,7 +219,8 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
       info.sewn = true;
     }
   }
-  shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed);
+  TopTools_DataMapOfShapeReal area;
+  shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed, area);
   info.free_curves_after_sewing = count_free_curves(shape);
   bbox_diagonal(shape, info.bbox_min, info.bbox_max);
 
@@ -232,13 +248,17 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
   TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
   try {
+    impl->curve_data.resize(info.curves);
+    tbb::parallel_for(1, info.curves + 1, [&](int c) {
+      impl->curve_data[c - 1] =
+          make_curve_data(TopoDS::Edge(impl->edges(c)), shape, impl->vertices, impl->faces, edge_faces);
+    });
     impl->face_data.reserve(info.faces);
-    for (int f = 1; f <= info.faces; ++f)
-      impl->face_data.push_back(make_face_data(TopoDS::Face(impl->faces(f)), impl->edges));
-    impl->curve_data.reserve(info.curves);
-    for (int c = 1; c <= info.curves; ++c)
-      impl->curve_data.push_back(make_curve_data(TopoDS::Edge(impl->edges(c)), shape, impl->vertices,
-                                                 impl->faces, edge_faces));
+    for (int f = 1; f <= info.faces; ++f) {
+      const TopoDS_Shape& face = impl->faces(f);
+      const double a = area.IsBound(face) ? area(face) : face_area_exact(face);
+      impl->face_data.push_back(make_face_data(TopoDS::Face(face), a, impl->edges, impl->curve_data));
+    }
   } catch (const Standard_Failure& e) {
     throw Error(std::string("broken shape: ") + e.GetMessageString());
   }

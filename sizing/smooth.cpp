@@ -84,30 +84,68 @@ bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vec
 
 }  // namespace
 
-void smooth_edges(const BackgroundMesh& bg, const std::vector<double>& edge_log_beta, std::vector<double>& h) {
-  std::vector<int> start, ids;
-  bg.vertex_edges(start, ids);
-  std::vector<double> w(bg.edges.size());
-  for (size_t e = 0; e < bg.edges.size(); ++e)
-    w[e] = edge_log_beta[e] * (bg.xyz[bg.edges[e][0]] - bg.xyz[bg.edges[e][1]]).norm() * (1 - kSlack);
-  // Multi-source Dijkstra: every vertex starts at its own size.
+namespace {
+
+// Vertex -> incident edges and triangles, and per-edge weights ln(beta_e) l_e.
+struct Adjacency {
+  std::vector<int> edge_start, edge_ids, tri_start, tri_ids;
+  std::vector<double> w;
+  Adjacency(const BackgroundMesh& bg, const std::vector<double>& edge_log_beta) {
+    bg.vertex_edges(edge_start, edge_ids);
+    w.resize(bg.edges.size());
+    for (size_t e = 0; e < bg.edges.size(); ++e)
+      w[e] = edge_log_beta[e] * (bg.xyz[bg.edges[e][0]] - bg.xyz[bg.edges[e][1]]).norm() * (1 - kSlack);
+    const int nv = bg.num_vertices();
+    tri_start.assign(nv + 1, 0);
+    for (const auto& t : bg.tris)
+      for (int v : t) ++tri_start[v + 1];
+    for (int v = 0; v < nv; ++v) tri_start[v + 1] += tri_start[v];
+    tri_ids.resize(tri_start[nv]);
+    std::vector<int> fill(tri_start.begin(), tri_start.end() - 1);
+    for (int t = 0; t < bg.num_triangles(); ++t)
+      for (int v : bg.tris[t]) tri_ids[fill[v]++] = t;
+  }
+};
+
+// Dijkstra from the seed vertices (their current sizes as distances): lowers
+// every h_u above min over seeds (h_s + d(u, s)). With all vertices as seeds
+// this is the exact edge stage; after a triangle correction only the lowered
+// vertices need to be seeds. Appends every vertex it lowers to `lowered`.
+void propagate(const BackgroundMesh& bg, const Adjacency& a, const std::vector<int>& seeds, std::vector<double>& h,
+               std::vector<int>* lowered) {
   using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  for (int v = 0; v < bg.num_vertices(); ++v) heap.emplace(h[v], v);
+  std::vector<Item> init;
+  init.reserve(seeds.size());
+  for (int v : seeds) init.emplace_back(h[v], v);
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap(std::greater<Item>(), std::move(init));
   while (!heap.empty()) {
     auto [d, v] = heap.top();
     heap.pop();
     if (d > h[v]) continue;
-    for (int i = start[v]; i < start[v + 1]; ++i) {
-      const int e = ids[i];
+    for (int i = a.edge_start[v]; i < a.edge_start[v + 1]; ++i) {
+      const int e = a.edge_ids[i];
       const int u = bg.edges[e][0] == v ? bg.edges[e][1] : bg.edges[e][0];
-      const double cand = d + w[e];
+      const double cand = d + a.w[e];
       if (cand < h[u]) {
         h[u] = cand;
         heap.emplace(cand, u);
+        if (lowered) lowered->push_back(u);
       }
     }
   }
+}
+
+std::vector<int> all_vertices(const BackgroundMesh& bg) {
+  std::vector<int> v(bg.num_vertices());
+  for (int i = 0; i < bg.num_vertices(); ++i) v[i] = i;
+  return v;
+}
+
+}  // namespace
+
+void smooth_edges(const BackgroundMesh& bg, const std::vector<double>& edge_log_beta, std::vector<double>& h) {
+  const Adjacency a(bg, edge_log_beta);
+  propagate(bg, a, all_vertices(bg), h, nullptr);
 }
 
 double triangle_gradient(const BackgroundMesh& bg, const std::vector<double>& h, int t) {
@@ -123,30 +161,46 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
   m.h = m.h_initial;
   const int nt = bg.num_triangles();
   for (int t = 0; t < nt; ++t) s.degenerate_triangles += triangle_gradient(bg, m.h, t) < 0;
-  for (int round = 0;; ++round) {
-    double t0 = now();
-    if (round == 0 && solver == EdgeSolver::LpSolve) smooth_edges_lp(bg, m.edge_log_beta, m.h);
-    else smooth_edges(bg, m.edge_log_beta, m.h);
-    s.t_edge += now() - t0;
+  double t0 = now();
+  const Adjacency adj(bg, m.edge_log_beta);
+  if (solver == EdgeSolver::LpSolve) smooth_edges_lp(bg, m.edge_log_beta, m.h);
+  else propagate(bg, adj, all_vertices(bg), m.h, nullptr);
+  s.t_edge += now() - t0;
+  // Alternate triangle corrections (Eq. 11) and edge propagation (Eq. 12),
+  // each round looking only at triangles around the vertices that changed.
+  std::vector<int> work(nt);
+  for (int t = 0; t < nt; ++t) work[t] = t;
+  std::vector<int> stamp(nt, -1);
+  for (int round = 0; !work.empty(); ++round) {
     t0 = now();
-    int corrected = 0;
-    for (int t = 0; t < nt; ++t) {
+    std::vector<int> changed;
+    for (int t : work) {
       const double lb = m.tri_log_beta[t];
-      if (triangle_gradient(bg, m.h, t) > lb) {
-        // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
-        if (round < 50) corrected += correct_triangle(bg, t, lb, m.h);
-        else {
-          const auto& tr = bg.tris[t];
-          const double lo = std::min({m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]});
-          for (int v : tr) m.h[v] = lo;
-          ++corrected;
-        }
-      }
+      if (!(triangle_gradient(bg, m.h, t) > lb)) continue;
+      const auto& tr = bg.tris[t];
+      const double before[3] = {m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]};
+      // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
+      if (round < 50) correct_triangle(bg, t, lb, m.h);
+      else m.h[tr[0]] = m.h[tr[1]] = m.h[tr[2]] = std::min({before[0], before[1], before[2]});
+      for (int k = 0; k < 3; ++k)
+        if (m.h[tr[k]] < before[k]) changed.push_back(tr[k]);
+      ++s.triangle_corrections;
     }
     s.t_triangle += now() - t0;
-    s.triangle_corrections += corrected;
     s.rounds = round + 1;
-    if (corrected == 0) break;
+    if (changed.empty()) break;
+    t0 = now();
+    std::vector<int> touched = changed;
+    propagate(bg, adj, changed, m.h, &touched);
+    s.t_edge += now() - t0;
+    work.clear();
+    for (int v : touched)
+      for (int i = adj.tri_start[v]; i < adj.tri_start[v + 1]; ++i)
+        if (stamp[adj.tri_ids[i]] != round) {
+          stamp[adj.tri_ids[i]] = round;
+          work.push_back(adj.tri_ids[i]);
+        }
+    std::sort(work.begin(), work.end());  // the same order whatever the history
   }
   for (int v = 0; v < bg.num_vertices(); ++v)
     if (m.h[v] < m.h_initial[v]) {
