@@ -81,6 +81,13 @@ inline double orient(const SizeQuery::Tri& T, int k, double px, double py) {
   return dx * (py - B.y()) - dy * (px - B.x());
 }
 
+// Squared uv length of edge k (corner k+1 to corner k+2).
+inline double edge_length2(const SizeQuery::Tri& T, int k) {
+  return (T.uv[(k + 2) % 3] - T.uv[(k + 1) % 3]).squaredNorm();
+}
+
+constexpr int kGreedySteps = 16;  // walk steps that choose the exit edge greedily
+
 // Nearest point of segment PQ to p: parameter s in [0,1] and squared distance.
 inline void project_segment(const Vec2& P, const Vec2& Q, const Vec2& p, double& s, double& d2) {
   const Vec2 d = Q - P;
@@ -237,11 +244,11 @@ namespace {
 void build_start_grid(SizeQuery::Face& f) {
   const int nt = static_cast<int>(f.tris.size());
   const Vec2 span = (f.hi - f.lo).cwiseMax(Vec2::Constant(1e-300));
-  // About two triangles per cell, cells shaped like the patch's uv box.
-  const double cells = std::max(1.0, nt / 2.0);
+  // About two cells per triangle, cells shaped like the patch's uv box.
+  const double cells = std::max(1.0, 2.0 * nt);
   const double ratio = span.x() / span.y();
-  f.nx = static_cast<int>(std::clamp(std::round(std::sqrt(cells * ratio)), 1.0, 1024.0));
-  f.ny = static_cast<int>(std::clamp(std::round(cells / f.nx), 1.0, 1024.0));
+  f.nx = static_cast<int>(std::clamp(std::round(std::sqrt(cells * ratio)), 1.0, 4096.0));
+  f.ny = static_cast<int>(std::clamp(std::round(cells / f.nx), 1.0, 4096.0));
   f.grid_lo = f.lo;
   f.inv_du = f.nx / span.x();
   f.inv_dv = f.ny / span.y();
@@ -510,12 +517,21 @@ SizeQuery::Hit SizeQuery::locate(int face, const Vec2& uv, int hint, QueryStats*
   Vec2 p = uv;
   if (f.period_u > 0 && (p.x() < f.lo.x() || p.x() > f.hi.x())) p.x() = wrap_periodic(p.x(), f.lo.x(), f.hi.x(), f.period_u);
   if (f.period_v > 0 && (p.y() < f.lo.y() || p.y() > f.hi.y())) p.y() = wrap_periodic(p.y(), f.lo.y(), f.hi.y(), f.period_v);
-  int start = hint;
-  if (static_cast<unsigned>(hint) >= f.tris.size()) {
-    // No hint: the start triangle of the grid cell holding the point.
-    const int i = std::clamp(static_cast<int>((p.x() - f.grid_lo.x()) * f.inv_du), 0, f.nx - 1);
-    const int j = std::clamp(static_cast<int>((p.y() - f.grid_lo.y()) * f.inv_dv), 0, f.ny - 1);
-    start = f.cell_tri[static_cast<size_t>(j) * f.nx + i];
+  // Start triangle: the hint; with no hint, the grid cell's triangle.
+  const int i = std::clamp(static_cast<int>((p.x() - f.grid_lo.x()) * f.inv_du), 0, f.nx - 1);
+  const int j = std::clamp(static_cast<int>((p.y() - f.grid_lo.y()) * f.inv_dv), 0, f.ny - 1);
+  const int cell = f.cell_tri[static_cast<size_t>(j) * f.nx + i];
+  int start = cell;
+  if (static_cast<unsigned>(hint) < f.tris.size()) {
+    start = hint;
+    if (grid_with_hint_ && hint != cell) {
+      // The nearer (uv distance to the centroid) of the hint and the cell's
+      // triangle: a hint across a seam or several thin triangles away loses.
+      const Tri &A = f.tris[hint], &B = f.tris[cell];
+      const double da = (3 * p - A.uv[0] - A.uv[1] - A.uv[2]).squaredNorm();
+      const double db = (3 * p - B.uv[0] - B.uv[1] - B.uv[2]).squaredNorm();
+      if (db < da) start = cell;
+    }
   }
   QueryStats st;
   st.queries = 1;
@@ -557,10 +573,18 @@ SizeQuery::Hit SizeQuery::walk(const Face& f, const Vec2& p, int t, QueryStats& 
     int k = __builtin_ctz(beyond);
     if (beyond & (beyond - 1)) {
       const int a = k, b = __builtin_ctz(beyond & (beyond - 1));
-      coin ^= coin << 13;
-      coin ^= coin >> 17;
-      coin ^= coin << 5;
-      k = (coin & 1) ? b : a;
+      if (steps <= kGreedySteps) {
+        // The edge the point is farthest beyond (signed distance o_k / |edge k|),
+        // which heads straight across anisotropic patches.
+        const double oa = a == 0 ? o0 : o1, ob = b == 1 ? o1 : o2;
+        k = oa * oa * edge_length2(T, b) >= ob * ob * edge_length2(T, a) ? a : b;
+      } else {
+        // Past that, a deterministic coin: breaks the cycles a greedy walk can fall into.
+        coin ^= coin << 13;
+        coin ^= coin >> 17;
+        coin ^= coin << 5;
+        k = (coin & 1) ? b : a;
+      }
       const int other = k == a ? b : a;
       if (T.adj[k] < 0 && T.adj[other] >= 0) k = other;  // prefer the edge that leads on
     }

@@ -16,8 +16,9 @@
 // How a query is answered (paper 4.2: "the search occurs in the two-dimensional
 // parametric space of the input face"; walk-through after Shan et al. 2008):
 //   1. uv of a periodic face is wrapped by its period into the patch's uv range;
-//   2. the walk starts from the hint (the previous answer's triangle) or, with no
-//      hint, from a per-face coarse grid of start triangles built here;
+//   2. the walk starts from the hint (the previous answer's triangle) or from
+//      the triangle of a per-face coarse uv grid of start triangles built here,
+//      whichever lies nearer the point (no hint: the grid's);
 //   3. it steps from triangle to neighbour across an edge the point lies beyond,
 //      never back across the entry edge, choosing between two such edges by a
 //      deterministic coin (remembering stochastic walk), until the point is inside;
@@ -87,6 +88,10 @@ class SizeQuery final : public SizeFunction {
   QueryStats stats() const;
   void reset_stats();
 
+  // Start from the nearer of the hint and the start grid's triangle (default),
+  // or from the hint alone as in the paper. Set before querying (not thread-safe).
+  void set_grid_with_hint(bool on) { grid_with_hint_ = on; }
+
   int num_faces() const;
   int num_triangles(int face) const;
 
@@ -113,6 +118,7 @@ class SizeQuery final : public SizeFunction {
   std::vector<Face> faces_;      // index face - 1
   std::unique_ptr<Bvh> bvh_;
   std::unique_ptr<StatSlot[]> slots_;
+  bool grid_with_hint_ = true;
 };
 
 }  // namespace sizemesh
