@@ -31,12 +31,12 @@ struct SizeQuery::Face {
   Vec2 lo{0, 0}, hi{0, 0};     // uv range of the patch
   double period_u = 0, period_v = 0;
   int step_limit = 64;         // walk steps before the brute-force fallback
-  // Coarse grid of start triangles (used only when a query has no hint).
+  // Grid of start triangles over the uv box (a start when the hint is far or missing).
   Vec2 grid_lo{0, 0};
   double inv_du = 0, inv_dv = 0;
   int nx = 1, ny = 1;
   std::vector<int> cell_tri;   // #nx*ny, a triangle containing (or near) each cell centre
-  // Boundary chain (used to clamp points just outside the domain).
+  // Boundary chain (clamping points outside the domain, going around obstacles).
   std::vector<int> bslot;      // #3t, boundary edge of slot 3 t + k, or -1
   std::vector<BEdge> bedges;
 };
@@ -312,8 +312,9 @@ void build_boundary(SizeQuery::Face& f, const FacePatch& patch) {
       if (tv[t][c] == v) return c;
     return -1;
   };
-  // Around vertex v from triangle t (corner c), crossing first the edge opposite
-  // corner `first`, until an edge with no neighbour: that edge's slot, or -1.
+  // Around vertex v = corner c of triangle t, forward (leaving by the edge from v)
+  // or backward (by the edge into v), until an edge with no neighbour: its slot
+  // 3 t + k, or -1 when the fan is broken.
   auto rotate = [&](int t, int c, bool forward) {
     const int v = tv[t][c];
     int from = -1;
@@ -483,7 +484,7 @@ SizeQuery::SizeQuery(const BackgroundMesh& bg, std::vector<double> h, std::vecto
     b.order[t] = t;
   }
   if (nt > 0) {
-    b.nodes.reserve(2 * nt / 2 + 8);
+    b.nodes.reserve(nt + 8);  // at most 2 #leaves - 1 nodes, leaves hold up to 4 triangles
     b.nodes.emplace_back();
     build_bvh(b, 0, 0, nt);
   }
@@ -517,9 +518,9 @@ SizeQuery::Hit SizeQuery::locate(int face, const Vec2& uv, int hint, QueryStats*
   Vec2 p = uv;
   if (f.period_u > 0 && (p.x() < f.lo.x() || p.x() > f.hi.x())) p.x() = wrap_periodic(p.x(), f.lo.x(), f.hi.x(), f.period_u);
   if (f.period_v > 0 && (p.y() < f.lo.y() || p.y() > f.hi.y())) p.y() = wrap_periodic(p.y(), f.lo.y(), f.hi.y(), f.period_v);
-  // Start triangle: the hint; with no hint, the grid cell's triangle.
-  const int i = std::clamp(static_cast<int>((p.x() - f.grid_lo.x()) * f.inv_du), 0, f.nx - 1);
-  const int j = std::clamp(static_cast<int>((p.y() - f.grid_lo.y()) * f.inv_dv), 0, f.ny - 1);
+  // Start triangle: the hint, or the grid cell's triangle when nearer or no hint.
+  const int i = static_cast<int>(std::clamp((p.x() - f.grid_lo.x()) * f.inv_du, 0.0, f.nx - 1.0));
+  const int j = static_cast<int>(std::clamp((p.y() - f.grid_lo.y()) * f.inv_dv, 0.0, f.ny - 1.0));
   const int cell = f.cell_tri[static_cast<size_t>(j) * f.nx + i];
   int start = cell;
   if (static_cast<unsigned>(hint) < f.tris.size()) {
@@ -542,9 +543,11 @@ SizeQuery::Hit SizeQuery::locate(int face, const Vec2& uv, int hint, QueryStats*
 }
 
 // The walk-through (Shan et al. 2008, as the paper adopts): from the start
-// triangle, cross an edge the point lies beyond, never the entry edge; with two
-// such edges a deterministic coin picks one (remembering stochastic walk), which
-// breaks the cycles a plain visibility walk can fall into.
+// triangle, cross an edge the point lies beyond, never the entry edge. With two
+// such edges the first steps take the one the point is farthest beyond; later
+// steps toss a deterministic coin (remembering stochastic walk), which breaks
+// the cycles a visibility walk can fall into in non-Delaunay triangulations.
+// The step limit ends a walk still cycling (folded patches) in the scan.
 SizeQuery::Hit SizeQuery::walk(const Face& f, const Vec2& p, int t, QueryStats& st) const {
   const Tri* tris = f.tris.data();
   const double px = p.x(), py = p.y();
@@ -854,7 +857,7 @@ double SizeQuery::at_xyz(const Vec3& xyz) const {
   if (b.nodes.empty()) throw Error("size query: the background mesh has no triangles");
   if (!xyz.allFinite()) throw Error("size query: a non-finite point was asked");
   double best = std::numeric_limits<double>::infinity(), h = b.h[0][0];
-  int stack[128];
+  int stack[128];  // median splits: depth <= log2(#T) < 32, the stack holds at most depth + 1
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
@@ -877,7 +880,6 @@ double SizeQuery::at_xyz(const Vec3& xyz) const {
     // Nearer child last, so it is visited first.
     const double dl = box_distance2(xyz, b.nodes[node.left].lo, b.nodes[node.left].hi);
     const double dr = box_distance2(xyz, b.nodes[node.right].lo, b.nodes[node.right].hi);
-    if (top + 2 > 128) continue;  // depth cannot exceed ~2 log2(#T) with median splits
     if (dl < dr) {
       stack[top++] = node.right;
       stack[top++] = node.left;
