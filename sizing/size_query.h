@@ -20,11 +20,14 @@
 //      the triangle of a per-face coarse uv grid of start triangles built here,
 //      whichever lies nearer the point (no hint: the grid's);
 //   3. it steps from triangle to neighbour across an edge the point lies beyond,
-//      never back across the entry edge, choosing between two such edges by a
-//      deterministic coin (remembering stochastic walk), until the point is inside;
-//   4. a walk blocked by the patch boundary follows the boundary to the nearest
-//      boundary point; a point slightly outside the domain (trimming tolerance,
-//      chord sagitta, round-off) gets the size there, clamped, never extrapolated;
+//      never back across the entry edge, choosing between two such edges the one
+//      the point is farthest beyond and, after a few steps, by a deterministic
+//      coin (remembering stochastic walk), until the point is inside;
+//   4. a walk blocked by the patch boundary follows the boundary chain to a
+//      nearest boundary point; when that point is provably the nearest of the
+//      whole domain and the point lies beyond it (slightly outside: trimming
+//      tolerance, chord sagitta, round-off) the point gets the size there,
+//      clamped, never extrapolated;
 //   5. a walk blocked by the boundary of a non-convex domain (notches, slots,
 //      holes) without being clearly outside goes around the obstacle: a straight
 //      walk along the segment to the point that follows the boundary chain when

@@ -404,6 +404,39 @@ TEST_CASE("the walk terminates on degenerate, folded and cyclic uv patches and o
   }
   CHECK(fs.queries == 5000);
 
+  // Random triangle soups (overlapping, folded, degenerate, non-manifold): every
+  // query ends with a convex combination of the sizes.
+  for (int soup = 0; soup < 40; ++soup) {
+    BackgroundMesh rb;
+    std::vector<Vec2> ruv;
+    std::uniform_real_distribution<double> R(0, 1);
+    const int nv = 6 + soup % 10;
+    for (int i = 0; i < nv; ++i)
+      ruv.emplace_back(soup % 3 == 0 ? std::round(R(rng) * 4) / 4 : R(rng), R(rng));  // repeated uvs too
+    std::vector<std::array<int, 3>> rt;
+    for (int i = 0; i < 3 * nv; ++i) {
+      std::array<int, 3> t = {static_cast<int>(rng() % nv), static_cast<int>(rng() % nv), static_cast<int>(rng() % nv)};
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+      const Vec2 e1 = ruv[t[1]] - ruv[t[0]], e2 = ruv[t[2]] - ruv[t[0]];
+      if (e1.x() * e2.y() - e1.y() * e2.x() < 0) std::swap(t[1], t[2]);
+      rt.push_back(t);
+    }
+    if (rt.empty()) continue;
+    rb.patches.push_back(patch_from(1, ruv, rt, 0));
+    rb.xyz.resize(nv, Vec3::Zero());
+    std::vector<double> rh(nv);
+    for (int i = 0; i < nv; ++i) rh[i] = 1 + i;
+    const SizeQuery rq(rb, rh);
+    std::uniform_real_distribution<double> P(-0.5, 1.5);
+    for (int i = 0; i < 200; ++i) {
+      const SizeQuery::Hit hit = rq.locate(1, Vec2(P(rng), P(rng)), static_cast<int>(rng() % (rt.size() + 1)) - 1);
+      REQUIRE(hit.h >= 1 - 1e-12);
+      REQUIRE(hit.h <= nv + 1e-12);
+      REQUIRE(hit.tri >= 0);
+      REQUIRE(hit.tri < static_cast<int>(rt.size()));
+    }
+  }
+
   int hint = -1;
   CHECK_THROWS_AS(query.at(2, Vec2(0, 0), hint), Error);
   CHECK_THROWS_AS(query.at(4, Vec2(0, 0), hint), Error);
