@@ -20,7 +20,7 @@ struct SizingParams {
   double beta = 1.2;        // gradation: growth factor per element
   double h_min = 0;         // 0: h_min_rel * bounding-box diagonal
   double h_max = 0;         // 0: h_max_rel * bounding-box diagonal
-  double h_min_rel = 1e-4;
+  double h_min_rel = 1e-3;
   double h_max_rel = 0.05;
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;

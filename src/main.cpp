@@ -30,7 +30,10 @@ int main(int argc, char** argv) {
       "sizes follow the geometry (curvature, proximity, user sizes) with a bounded growth rate.\n"
       "Exit status: 0 success, 1 error (bad input or output), 2 bad command line, 3 partial mesh."};
   app.add_option("model", o.input, "CAD model: .step/.stp, .iges/.igs or .brep")->required();
-  app.add_option("-o,--output", o.output, "output mesh (.vtu)");
+  app.add_option("-o,--output", o.output, "output surface mesh: .vtu (ParaView), .msh (Gmsh 4.1) or .stl");
+  app.add_option("--report", o.report, "write a JSON report: counts, quality, conformity, timings, failed faces");
+  app.add_option("--threads", o.meshing.threads, "threads for meshing faces (0: all cores); the mesh is the same")
+      ->capture_default_str()->check(CLI::Range(0, 1024));
   app.add_option("--background", o.background, "write the background mesh with its size fields (.vtu)");
   app.add_flag("--info", info_only, "print what was loaded (unit, bounding box, entity counts, free curves) and exit");
   app.add_flag("!--no-sew", o.load.sew, "do not sew faces that touch");
@@ -41,7 +44,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(positive);
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
-  auto* sizing = "sizing (paper 3.4; h_min/h_max default to 1e-4 and 0.05 of the bounding-box diagonal)";
+  auto* sizing = "sizing (paper 3.4; h_min/h_max default to 1e-3 and 0.05 of the bounding-box diagonal)";
   app.add_option("--phi-c", o.sizing.phi_c_deg, "curvature: central angle per element, degrees, in (0, 180)")
       ->capture_default_str()->group(sizing);
   app.add_option("--mu-d", o.sizing.mu_d, "proximity: elements across a thin region, > 0")

@@ -3,39 +3,90 @@
 #include <chrono>
 #include <iostream>
 
+#include "mesher/mesh_surface.h"
+#include "mesher/quality.h"
 #include "sizing/initial_sizes.h"
+#include "sizing/size_query.h"
 #include "src/background_output.h"
+#include "src/mesh_output.h"
+#include "src/report.h"
 #include "src/sizing_report.h"
 #include "src/vtu_writer.h"
 
 namespace sizemesh {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+// Records the wall time of each named stage.
+class Stopwatch {
+ public:
+  explicit Stopwatch(RunReport& r) : r_(r) {}
+  void lap(const std::string& stage) {
+    const auto t = std::chrono::steady_clock::now();
+    r_.seconds.emplace_back(stage, std::chrono::duration<double>(t - t0_).count());
+    t0_ = t;
+  }
+
+ private:
+  RunReport& r_;
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
+std::vector<double> periods(const Model& model, bool u) {
+  std::vector<double> p(model.num_faces());
+  for (int f = 1; f <= model.num_faces(); ++f) p[f - 1] = u ? model.face_period_u(f) : model.face_period_v(f);
+  return p;
 }
+
 }  // namespace
 
 int run(const RunOptions& o) {
-  if (!o.output.empty()) check_writable(o.output);
+  // Refuse what cannot succeed before any long work starts.
+  if (!o.output.empty()) check_writable(o.output), check_mesh_format(o.output);
   if (!o.background.empty()) check_writable(o.background);
-  auto t0 = std::chrono::steady_clock::now();
-  Model model = load_model(o.input, o.load);                         // geometry/
-  const double t_load = seconds_since(t0);
-  t0 = std::chrono::steady_clock::now();
-  BackgroundMesh bg = build_background_mesh(model, o.tessellation);  // geometry/ (paper 3.1)
-  const double t_bg = seconds_since(t0);
-  if (o.verbose)
-    std::cout << "loaded " << model.info().faces << " faces in " << t_load << " s; background mesh "
-              << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices in " << t_bg << " s\n";
+  if (!o.report.empty()) check_writable(o.report);
   SizingParams params = o.sizing;
   if (!o.config.empty()) read_config(o.config, params);
-  SizeMap h = initial_sizes(model, bg, params, model.info().diagonal());  // sizing/ (paper 3.2, 3.4)
-  SmoothStats smoothing = smooth(bg, h, o.edge_solver);                   // sizing/ (paper 3.3, Eq. 11-12)
-  if (o.verbose) print_sizing_summary(bg, h, smoothing, std::cout);
+
+  RunReport report;
+  Stopwatch clock(report);
+  Model model = load_model(o.input, o.load);                                   // geometry/
+  clock.lap("load");
+  BackgroundMesh bg = build_background_mesh(model, o.tessellation);            // geometry/ (paper 3.1)
+  clock.lap("background");
+  SizeMap h = initial_sizes(model, bg, params, model.info().diagonal());      // sizing/   (3.2, 3.4)
+  clock.lap("initial_sizes");
+  report.smoothing = smooth(bg, h, o.edge_solver);                             // sizing/   (3.3, Eq. 11-12)
+  clock.lap("smoothing");
+  report.model = &model;
+  report.background_triangles = bg.num_triangles();
+  report.background_vertices = bg.num_vertices();
+  report.sizes = &h;
+  if (o.verbose) {
+    std::cout << "model: " << model.info().faces << " faces, " << model.info().curves << " curves; background mesh "
+              << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices\n";
+    print_sizing_summary(bg, h, report.smoothing, std::cout);
+  }
   if (!o.background.empty()) write_background_sizes(o.background, bg, h);
-  if (!o.output.empty()) write_background_sizes(o.output, bg, h);
-  return kOk;
+
+  SurfaceMesh mesh;
+  if (!o.output.empty()) {
+    SizeQuery query(bg, h.h, periods(model, true), periods(model, false));  // sizing/ (4.2)
+    mesh = mesh_surface(model, query, o.meshing);                           // mesher/ (4.1)
+    clock.lap("meshing");
+    report.queries = query.stats();
+    report.mesh = &mesh;
+    report.quality = mesh_quality(mesh, model, query);
+    std::vector<double> target(mesh.xyz.size());
+    for (size_t n = 0; n < mesh.xyz.size(); ++n) target[n] = query.at_xyz(mesh.xyz[n]);
+    write_mesh(o.output, mesh, report.quality.min_angle, target);
+    clock.lap("quality_and_output");
+    if (o.verbose) print_mesh_summary(report, std::cout);
+  }
+  if (!o.report.empty()) write_report(o.report, report);
+  for (const auto& f : mesh.failures)
+    std::cerr << "sizemesh: warning: face " << f.face << " was not meshed: " << f.reason << "\n";
+  return mesh.failures.empty() ? kOk : kPartial;
 }
 
 }  // namespace sizemesh

@@ -5,6 +5,7 @@
 
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
+#include "mesher/surface_mesh.h"
 #include "sizing/params.h"
 #include "sizing/smooth.h"
 
@@ -12,20 +13,23 @@ namespace sizemesh {
 
 struct RunOptions {
   std::string input;
-  std::string output;       // mesh (.vtu); empty: none
-  std::string background;   // background mesh with size fields (.vtu); empty: none
+  std::string output;       // mesh: .vtu, .msh or .stl; empty: no mesh is made
+  std::string background;   // background mesh with its size fields (.vtu); empty: none
+  std::string report;       // JSON report; empty: none
   LoadOptions load;
   BackgroundOptions tessellation;
   SizingParams sizing;
   std::string config;       // JSON config (globals and local sizes); empty: none
   EdgeSolver edge_solver = EdgeSolver::Dijkstra;
+  MeshOptions meshing;
   bool verbose = true;
 };
 
 // Exit codes of the sizemesh command.
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kPartial = 3 };
 
-// Runs the whole pipeline; throws Error on bad input. Returns the exit code.
+// Runs the whole pipeline; throws Error on bad input. Returns the exit code
+// (kPartial when some faces could not be meshed; the rest is still written).
 int run(const RunOptions& options);
 
 }  // namespace sizemesh

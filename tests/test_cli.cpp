@@ -62,7 +62,7 @@ TEST_CASE("bad input gives one clear error line and a non-zero exit") {
   expect_one_error(test::run_sizemesh(""), "model is required");
 }
 
-TEST_CASE("--help documents every option and --version prints the version") {
+TEST_CASE("help documents every option and version prints the version") {
   const auto help = test::run_sizemesh("--help");
   CHECK(help.status == 0);
   for (const char* opt : {"--output", "--background", "--info", "--no-sew", "--sew-tolerance", "--deflection",
@@ -73,7 +73,7 @@ TEST_CASE("--help documents every option and --version prints the version") {
   CHECK(version.out.rfind("sizemesh ", 0) == 0);
 }
 
-TEST_CASE("--info reports unit, bounding box, counts and free curves") {
+TEST_CASE("info reports unit, bounding box, counts and free curves") {
   const auto r = test::run_sizemesh("--info " + test::model_path("f16_openvsp.stp"));
   REQUIRE(r.status == 0);
   CHECK(r.out.find("unit:        ft") != std::string::npos);

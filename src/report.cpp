@@ -1,0 +1,86 @@
+#include "src/report.h"
+
+#include <fstream>
+#include <iomanip>
+
+namespace sizemesh {
+
+nlohmann::json report_json(const RunReport& r) {
+  using nlohmann::json;
+  const ModelInfo& info = r.model->info();
+  json j;
+  j["model"] = {{"file", info.path},       {"format", info.format},   {"unit", info.unit},
+                {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
+                {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing}};
+  j["background"] = {{"triangles", r.background_triangles}, {"vertices", r.background_vertices}};
+  if (r.sizes) {
+    std::vector<int> count(kNumLimits, 0);
+    for (Limit l : r.sizes->limit) ++count[static_cast<int>(l)];
+    json limited;
+    for (int i = 0; i < kNumLimits; ++i) limited[limit_name(static_cast<Limit>(i))] = count[i];
+    j["sizing"] = {{"h_min", r.sizes->h_min},
+                   {"h_max", r.sizes->h_max},
+                   {"vertices_limited_by", limited},
+                   {"smoothing_lowered", r.smoothing.lowered},
+                   {"smoothing_max_reduction", r.smoothing.max_reduction},
+                   {"smoothing_rounds", r.smoothing.rounds}};
+  }
+  if (r.mesh) {
+    const MeshQuality& q = r.quality;
+    const double n = std::max(1, q.triangles);
+    json failures = json::array();
+    for (const auto& f : r.mesh->failures) failures.push_back({{"face", f.face}, {"reason", f.reason}});
+    std::vector<int> hist(q.histogram.begin(), q.histogram.end());
+    j["mesh"] = {{"triangles", q.triangles},
+                 {"nodes", q.nodes},
+                 {"min_angle_histogram_6deg", hist},
+                 {"worst_min_angle_deg", q.worst_angle},
+                 {"bad_below_12deg", q.below_12},
+                 {"bad_share", q.below_12 / n},
+                 {"low_quality_below_24deg", q.below_24},
+                 {"low_quality_share", q.below_24 / n},
+                 {"size_conformity", q.size_conformity},
+                 {"boundary_edges", q.boundary_edges},
+                 {"nonmanifold_edges", q.nonmanifold_edges},
+                 {"orientation_conflicts", q.orientation_conflicts},
+                 {"inverted_triangles", q.inverted},
+                 {"zero_area_triangles", q.zero_area},
+                 {"area", q.area},
+                 {"failed_faces", failures}};
+    j["size_query"] = {{"queries", r.queries.queries},
+                       {"mean_triangles_visited", r.queries.mean_visited()},
+                       {"max_triangles_visited", r.queries.max_visited},
+                       {"fallbacks", r.queries.fallbacks},
+                       {"outside_domain", r.queries.outside}};
+  }
+  json t;
+  for (const auto& [stage, s] : r.seconds) t[stage] = s;
+  j["seconds"] = t;
+  return j;
+}
+
+void print_mesh_summary(const RunReport& r, std::ostream& out) {
+  if (!r.mesh) return;
+  const MeshQuality& q = r.quality;
+  const double n = std::max(1, q.triangles);
+  out << "mesh: " << q.triangles << " triangles, " << q.nodes << " nodes\n"
+      << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
+      << " (" << 100.0 * q.below_12 / n << "%), below 24 deg: " << q.below_24 << " (" << 100.0 * q.below_24 / n
+      << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
+      << "topology: " << q.boundary_edges << " boundary edges, " << q.nonmanifold_edges << " non-manifold edges, "
+      << q.inverted << " inverted triangles\n"
+      << "size queries: " << r.queries.queries << ", " << r.queries.mean_visited()
+      << " background triangles visited on average, " << r.queries.fallbacks << " fallbacks\n";
+  out << "time:";
+  for (const auto& [stage, s] : r.seconds) out << " " << stage << " " << s << " s;";
+  out << "\n";
+  for (const auto& f : r.mesh->failures) out << "face " << f.face << " not meshed: " << f.reason << "\n";
+}
+
+void write_report(const std::string& path, const RunReport& r) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write report '" + path + "'");
+  out << report_json(r).dump(2) << "\n";
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,37 @@
+// The run report: printed summary and --report JSON (mesh counts, min-angle
+// histogram, bad (< 12 deg) and low-quality (< 24 deg) triangles as the paper
+// counts them, size conformity, boundary and non-manifold edges, time per
+// stage, mean background triangles visited per size query, failed faces).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/model.h"
+#include "mesher/quality.h"
+#include "mesher/surface_mesh.h"
+#include "sizing/size_map.h"
+#include "sizing/size_query.h"
+#include "sizing/smooth.h"
+
+namespace sizemesh {
+
+struct RunReport {
+  const Model* model = nullptr;
+  int background_triangles = 0, background_vertices = 0;
+  const SizeMap* sizes = nullptr;
+  SmoothStats smoothing;
+  const SurfaceMesh* mesh = nullptr;
+  MeshQuality quality;
+  QueryStats queries;
+  std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
+};
+
+nlohmann::json report_json(const RunReport& r);
+void print_mesh_summary(const RunReport& r, std::ostream& out);
+void write_report(const std::string& path, const RunReport& r);
+
+}  // namespace sizemesh
