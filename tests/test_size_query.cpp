@@ -6,6 +6,7 @@
 
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -278,19 +279,21 @@ TEST_CASE("on every shared model the walk-through search answers like brute forc
   }
 }
 
-TEST_CASE("a sphere and a cylinder answer the same at u and u + period, across the seam", "[size_query]") {
-  for (int shape = 0; shape < 2; ++shape) {
-    const Model model = shape == 0 ? model_from_shape(BRepPrimAPI_MakeSphere(2.0).Shape())
-                                   : model_from_shape(BRepPrimAPI_MakeCylinder(1.0, 3.0).Shape());
-    const Case c = make_case(shape == 0 ? "sphere" : "cylinder", model);
+TEST_CASE("a sphere, a cylinder and a torus answer the same at u and u + period, across the seam", "[size_query]") {
+  for (int shape = 0; shape < 3; ++shape) {
+    const Model model = shape == 0   ? model_from_shape(BRepPrimAPI_MakeSphere(2.0).Shape())
+                        : shape == 1 ? model_from_shape(BRepPrimAPI_MakeCylinder(1.0, 3.0).Shape())
+                                     : model_from_shape(BRepPrimAPI_MakeTorus(3.0, 1.0).Shape());
+    const Case c = make_case(shape == 0 ? "sphere" : shape == 1 ? "cylinder" : "torus", model);
     INFO(c.name);
     const SizeQuery query(c.bg, c.h, c.period_u, c.period_v);
     std::mt19937 rng(99);
-    int periodic_faces = 0, checks = 0;
+    int periodic_faces = 0, v_periodic_faces = 0, checks = 0;
     for (const FacePatch& patch : c.bg.patches) {
-      const double P = c.period_u[patch.face - 1];
+      const double P = c.period_u[patch.face - 1], Pv = c.period_v[patch.face - 1];
       if (patch.tris.empty() || !(P > 0)) continue;
       ++periodic_faces;
+      v_periodic_faces += Pv > 0;
       std::uniform_int_distribution<int> pick(0, static_cast<int>(patch.tris.size()) - 1);
       for (int i = 0; i < 300; ++i) {
         const int t = pick(rng);
@@ -305,6 +308,13 @@ TEST_CASE("a sphere and a cylinder answer the same at u and u + period, across t
           CHECK(std::abs(h - base.h) <= 1e-12 * base.h);
           ++checks;
         }
+        if (Pv > 0)
+          for (const Vec2& shift : {Vec2(0, Pv), Vec2(P, -Pv), Vec2(-3 * P, 2 * Pv)}) {
+            int hint = i % 2 ? base.tri : -1;
+            const double h = query.at(patch.face, p + shift, hint);
+            CHECK(std::abs(h - base.h) <= 1e-12 * base.h);
+            ++checks;
+          }
       }
       // Points on and just across the seam, walking from a hint on the other side.
       double umin = patch.uv[0].x(), umax = umin, vmin = patch.uv[0].y(), vmax = vmin;
@@ -330,6 +340,7 @@ TEST_CASE("a sphere and a cylinder answer the same at u and u + period, across t
       }
     }
     CHECK(periodic_faces >= 1);
+    CHECK((shape != 2 || v_periodic_faces >= 1));
     CHECK(checks > 100);
     CHECK(query.stats().outside == 0);
   }
