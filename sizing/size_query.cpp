@@ -657,7 +657,7 @@ SizeQuery::Hit SizeQuery::clamp_to_boundary(const Face& f, const Vec2& p, int t,
       }
       if (!((beyond(e) || d2 == 0) && 4 * d2 <= be[e].clearance * be[e].clearance)) break;
       st.visited += visited;
-      ++st.outside;
+      if (d2 > 0) ++st.outside;  // on the boundary itself it is not outside
       const Tri& T = tris[be[e].t];
       return {lerp(T.h[(be[e].k + 1) % 3], T.h[(be[e].k + 2) % 3], s), be[e].t};
     }
@@ -688,7 +688,7 @@ SizeQuery::Hit SizeQuery::clamp_to_boundary(const Face& f, const Vec2& p, int t,
                                                            std::min(be[e_in].clearance, be[e_out].clearance)))
       break;
     st.visited += visited;
-    ++st.outside;
+    if (d2 > 0) ++st.outside;
     const Tri& T = tris[be[e_out].t];
     return {T.h[(be[e_out].k + 1) % 3], be[e_out].t};
   }
