@@ -72,10 +72,12 @@ struct Level {
   double radius;     // candidates within this metric distance (in s) of the ideal point
   bool take_best;    // if none reaches q_min, take the best valid one
 };
-// Strategy 0 prefers well shaped triangles; when its front gets stuck the face
-// is meshed again with strategy 1, which takes the valid candidate nearest the
-// ideal point (it folds less on coarse, strongly curved faces), then 2, which
-// also accepts triangles closer to the surface's tangent plane limit.
+// Strategy 0 prefers well shaped triangles. When its front gets stuck the
+// face is meshed again: strategy 1 is the same but at last accepts any triangle
+// valid in uv (never leave a hole; the optimiser repairs what it can and the
+// quality report shows the rest); strategy 2 takes the valid candidate nearest
+// the ideal point (it folds less on coarse, strongly curved faces); strategy 3
+// also relaxes the normal check step by step.
 constexpr int kMaxTries = 6;
 constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
     {{0.45, 0.5, 0.5, 1.5, false},
@@ -84,18 +86,24 @@ constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
      {0.30, 0.3, 0.4, 2.0, true},
      {0.0, 0.05, 0.25, 4.0, true},
      {0.0, 0.0, 0.15, 8.0, true}},
+    {{0.45, 0.5, 0.5, 1.5, false},
+     {0.45, 0.5, 0.5, 1.5, false},
+     {0.30, 0.3, 0.4, 2.0, true},
+     {0.0, 0.05, 0.25, 4.0, true},
+     {0.0, 0.0, 0.15, 8.0, true},
+     {0.0, -2.0, 0.1, 8.0, true}},
     {{0.05, 0.5, 0.5, 1.5, false},
      {0.05, 0.5, 0.5, 1.5, false},
      {0.02, 0.3, 0.4, 2.0, true},
      {0.02, 0.3, 0.4, 2.0, true},
-     {0.0, 0.05, 0.25, 4.0, true},
-     {0.0, 0.0, 0.15, 8.0, true}},
+     {0.0, 0.0, 0.25, 4.0, true},
+     {0.0, -2.0, 0.15, 8.0, true}},
     {{0.05, 0.3, 0.4, 2.0, false},
      {0.02, 0.1, 0.3, 2.0, true},
      {0.0, 0.0, 0.25, 4.0, true},
      {0.0, -0.2, 0.15, 4.0, true},
      {0.0, -0.5, 0.15, 8.0, true},
-     {0.0, -0.9, 0.1, 8.0, true}},
+     {0.0, -2.0, 0.1, 8.0, true}},
 };
 
 class Front {
@@ -116,8 +124,17 @@ class Front {
     lo_ = lo;
     hi_ = hi;
     grid_.init(lo, hi, n_edges);
+    // Triangles on each edge in space (by node identity, across seams): a
+    // boundary edge has one on the other face, a seam edge none yet.
     for (const auto& loop : fm_.loops)
-      for (size_t i = 0; i < loop.size(); ++i) add_edge(loop[i], loop[(i + 1) % loop.size()]);
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const int a = loop[i], b = loop[(i + 1) % loop.size()];
+        add_edge(a, b);
+        if (!fm_.pole[a] && !fm_.pole[b]) {
+          int& uses = edge_uses_[pair_code(identity(a), identity(b))];
+          uses = uses == 0 ? 1 : 0;
+        }
+      }
 
     long long failed = 0;
     const long long max_failed = 20LL * n_edges + 2000;
@@ -158,6 +175,19 @@ class Front {
 
  private:
   static uint64_t code(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
+  static uint64_t pair_code(int a, int b) { return a < b ? code(a, b) : code(b, a); }
+  // A node's identity in space: its shared id on the boundary (seam copies
+  // agree), else its own.
+  int identity(int k) const { return fm_.global[k] >= 0 ? fm_.global[k] : (1 << 30) + k; }
+  // A new edge between nodes already joined in space would end non-manifold.
+  bool used_in_space(int a, int b) const {
+    if (fm_.pole[a] || fm_.pole[b]) return false;
+    auto it = edge_uses_.find(pair_code(identity(a), identity(b)));
+    return it != edge_uses_.end() && it->second > 0;
+  }
+  void count_uses(int a, int b) {
+    if (!fm_.pole[a] && !fm_.pole[b]) ++edge_uses_[pair_code(identity(a), identity(b))];
+  }
 
   bool pole_pair(int a, int b) const {
     return fm_.pole[a] && fm_.pole[b] && fm_.global[a] == fm_.global[b];
@@ -205,9 +235,18 @@ class Front {
     const double o = orient(ua, ub, uc);
     const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
     if (!(o > 1e-10 * scale)) return -1;
+    // Seam copies: no triangle joins two uv images of one node, and no inner
+    // edge repeats a boundary edge in space (it would be non-manifold).
+    if (c.node >= 0 && fm_.global[c.node] >= 0) {
+      const int gc = fm_.global[c.node];
+      if ((gc == fm_.global[a] && !pole_pair(a, c.node)) || (gc == fm_.global[b] && !pole_pair(b, c.node)))
+        return -8;
+    }
     // New edges must cross no front edge.
     const bool new_ac = c.node < 0 || find_edge(c.node, a) < 0;
     const bool new_cb = c.node < 0 || find_edge(b, c.node) < 0;
+    if (c.node >= 0 && ((new_ac && used_in_space(a, c.node)) || (new_cb && used_in_space(c.node, b))))
+      return -8;
     for (int ei : near_edges_) {
       const FrontEdge& e = edges_[ei];
       if (!e.alive) continue;
@@ -227,6 +266,10 @@ class Front {
       const Vec2& uk = fm_.uv[k];
       if (orient(ua, ub, uk) >= tol && orient(ub, uc, uk) >= tol && orient(uc, ua, uk) >= tol)
         return -3;
+      // Nor (in space) just beside a new edge: it would leave a sliver for later.
+      if (lv.cos_min > -1 && !fm_.pole[k] && ((new_ac && near_segment(fm_.s[a].p, c.s.p, fm_.s[k].p)) ||
+                           (new_cb && near_segment(c.s.p, fm_.s[b].p, fm_.s[k].p))))
+        return -7;
     }
     // Space: the triangle faces the way of the surface normal (Tremel procedure 2).
     const bool pole_tri = pole_pair(a, b) || (c.node >= 0 && (pole_pair(b, c.node) || pole_pair(c.node, a)));
@@ -242,6 +285,16 @@ class Front {
       if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return -5;
     const double q = triangle_quality(pa, pb, pc);
     return q > 1e-6 ? q : -6;
+  }
+
+  // Point x within a small fraction of the segment's length of segment pq (space).
+  static bool near_segment(const Vec3& p, const Vec3& q, const Vec3& x) {
+    const Vec3 d = q - p;
+    const double l2 = d.squaredNorm();
+    if (!(l2 > 0)) return false;
+    const double t = (x - p).dot(d) / l2;
+    if (t <= 0.02 || t >= 0.98) return false;
+    return (x - p - t * d).squaredNorm() < 0.03 * 0.03 * l2;
   }
 
   // Metric distance (in M) from a new point to the nearby front.
@@ -372,6 +425,9 @@ class Front {
       if (c.in_space) ++fronts_3d_;
     }
     fm_.tris.push_back({a, b, cn});
+    count_uses(a, b);
+    count_uses(b, cn);
+    count_uses(cn, a);
     kill_edge(ei);
     const int ca = find_edge(cn, a);
     if (ca >= 0) kill_edge(ca); else add_edge(a, cn);
@@ -428,6 +484,7 @@ class Front {
   std::vector<unsigned> stamp_, node_stamp_;
   unsigned visit_ = 0;
   std::unordered_map<uint64_t, int> map_;
+  std::unordered_map<uint64_t, int> edge_uses_;  // triangles per edge in space (identity pairs)
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap_;
   EdgeGrid grid_;

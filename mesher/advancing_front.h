@@ -27,7 +27,7 @@ struct FrontResult {
 };
 
 // Strategies 0 .. kStrategyCount-1, from the best shapes to the most robust.
-constexpr int kStrategyCount = 3;
+constexpr int kStrategyCount = 4;
 FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy = 0);
 
 }  // namespace sizemesh

@@ -120,8 +120,10 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
     const int n = static_cast<int>(loop.size());
     for (int i = 0; i < n; ++i) {
       const Entry& a = loop[i];
+      // The face is meshed against its own surface: S(uv), not the curve's
+      // xyz, which may lie off the surface by the CAD's edge tolerance. The
+      // mesh takes the shared curve node's xyz at assembly.
       SurfaceSample sa = fs.eval(a.uv);
-      sa.p = cm.xyz[a.global];
       if (a.pole) sa.n = Vec3::Zero();  // undefined on a pole
       ids.push_back(fm.add_node(a.uv, sa, a.global, a.pole));
       const Entry& b = loop[(i + 1) % n];
@@ -147,7 +149,6 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
       for (int j = 1; j < k; ++j) {
         const Vec2 uv = a.uv + (b.uv - a.uv) * (double(j) / k);
         SurfaceSample sj = fs.eval(uv);
-        sj.p = cm.xyz[a.global];
         sj.n = Vec3::Zero();
         ids.push_back(fm.add_node(uv, sj, a.global, true));
       }
