@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""sizemesh against Gmsh and Netgen on the shared models, with matched settings.
+
+For each model and each accuracy level (phi_c), runs every tool in its own
+process (Gmsh and Netgen both link OpenCASCADE and must not share one), then
+measures every mesh the same way with bench/mesh_metrics: triangles, share of
+min angles below 12 and 24 degrees, distance of triangle centroids to the CAD
+surface relative to the bounding-box diagonal. Prints a Markdown table and
+ratios against Gmsh. Never fails on numbers.
+
+    /usr/bin/python3 bench/peers.py [--build build] [--models DIR] [--phi 10 5] [--timeout 300] [--only NAME...]
+
+Settings (as the paper's defaults): beta = 1.2, h_max = diag / 20, h_min = diag / 1e4 for all tools;
+Gmsh 4.8: Frontal-Delaunay, Mesh.MeshSizeFromCurvature = round(360 / phi_c);
+Netgen 6.2: grading = ln(beta), curvaturesafety = 1 / (2 sin(phi_c / 2)), maxh = h_max (no h_min).
+One thread for every tool.
+"""
+import argparse, json, math, os, subprocess, sys, tempfile, time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+MODELS = ["onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp",
+          "cylinder_head_fins.stp", "impeller_laufrad.stp", "steering_knuckle.stp",
+          "d150_fuselage.igs", "f16_openvsp.stp"]
+GMSH_UNITS = {"mm": "MM", "m": "M", "cm": "CM", "ft": "FT", "in": "INCH", "um": "UM", "km": "KM"}
+
+GMSH_SCRIPT = r"""
+import sys, time, gmsh
+path, out, unit, hmin, hmax, npts = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6])
+gmsh.initialize(); gmsh.option.setNumber("General.Terminal", 0); gmsh.option.setNumber("General.NumThreads", 1)
+if unit: gmsh.option.setString("Geometry.OCCTargetUnit", unit)
+gmsh.model.occ.importShapes(path); gmsh.model.occ.synchronize()
+gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", npts)
+gmsh.option.setNumber("Mesh.MeshSizeMin", hmin); gmsh.option.setNumber("Mesh.MeshSizeMax", hmax)
+gmsh.option.setNumber("Mesh.Algorithm", 6); gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
+t = time.perf_counter(); gmsh.model.mesh.generate(2); t = time.perf_counter() - t
+gmsh.write(out); print(t)
+"""
+
+NETGEN_SCRIPT = r"""
+import sys, time, math
+from netgen.NgOCC import LoadOCCGeometry
+import netgen.meshing as nm
+path, out, hmax_mm, beta, phi = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
+geo = LoadOCCGeometry(path)
+mp = nm.MeshingParameters(maxh=hmax_mm, grading=math.log(beta), curvaturesafety=1.0 / (2 * math.sin(math.radians(phi) / 2)),
+                          perfstepsend=nm.MeshingStep.MESHSURFACE)
+t = time.perf_counter(); mesh = geo.GenerateMesh(mp=mp); t = time.perf_counter() - t
+mesh.Export(out, "Gmsh2 Format"); print(t)
+"""
+
+UNIT_MM = {"mm": 1.0, "m": 1000.0, "cm": 10.0, "ft": 304.8, "in": 25.4, "um": 1e-3, "km": 1e6}
+
+
+def model_info(build, path):
+    out = subprocess.run([os.path.join(build, "sizemesh"), "--info", path], capture_output=True, text=True, check=True).stdout
+    info = {}
+    for line in out.splitlines():
+        key, _, value = line.partition(":")
+        info[key.strip()] = value.strip()
+    info["diag"] = float(info["bounding box"].rsplit("diagonal", 1)[1])
+    return info
+
+
+def run(cmd, timeout):
+    t = time.perf_counter()
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, "timeout"
+    wall = time.perf_counter() - t
+    if p.returncode not in (0, 3):
+        return None, (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1][:80]
+    return wall, ""
+
+
+def metrics(build, model, mesh):
+    p = subprocess.run([os.path.join(build, "bench", "mesh_metrics"), model, mesh], capture_output=True, text=True)
+    return json.loads(p.stdout) if p.returncode == 0 else None
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
+    ap.add_argument("--phi", type=float, nargs="+", default=[10.0, 5.0])
+    ap.add_argument("--timeout", type=float, default=300)
+    ap.add_argument("--only", nargs="*")
+    ap.add_argument("--tools", nargs="*", default=["sizemesh", "gmsh", "netgen"])
+    a = ap.parse_args()
+    tmp = tempfile.mkdtemp(prefix="sizemesh_peers_")
+    rows = []
+    print("| model | phi_c | tool | wall s | triangles | tris/s | <12 deg | <24 deg | max dist/diag | mean dist/diag |")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|")
+    for name in MODELS:
+        if a.only and not any(o in name for o in a.only):
+            continue
+        path = os.path.join(a.models, name)
+        info = model_info(a.build, path)
+        diag, unit = info["diag"], info["unit"]
+        hmin, hmax = diag / 1e4, diag / 20
+        for phi in a.phi:
+            for tool in a.tools:
+                out = os.path.join(tmp, "%s_%s_%g.msh" % (name, tool, phi))
+                if tool == "sizemesh":
+                    cmd = [os.path.join(a.build, "sizemesh"), path, "-o", out, "-q", "--threads", "1", "--phi-c", str(phi),
+                           "--h-min", repr(hmin), "--h-max", repr(hmax)]
+                elif tool == "gmsh":
+                    cmd = ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, GMSH_UNITS.get(unit, ""), repr(hmin), repr(hmax),
+                           str(round(360 / phi))]
+                else:
+                    scale = UNIT_MM.get(unit, 1.0)
+                    cmd = ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(phi)]
+                wall, err = run(cmd, a.timeout)
+                m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
+                row = {"model": name, "phi_c": phi, "tool": tool, "wall": wall, "error": err, "metrics": m}
+                rows.append(row)
+                if m is None:
+                    print("| %s | %g | %s | %s | - | - | - | - | - | - |" % (name, phi, tool, err or "no mesh"))
+                else:
+                    print("| %s | %g | %s | %.2f | %d | %.0f | %.3f%% | %.3f%% | %.2e | %.2e |" % (
+                        name, phi, tool, wall, m["triangles"], m["triangles"] / wall, 100 * m["share_below_12"],
+                        100 * m["share_below_24"], m["max_centroid_distance_rel"], m["mean_centroid_distance_rel"]))
+                sys.stdout.flush()
+    # Ratios against Gmsh at the same model and phi_c.
+    print("\n| model | phi_c | throughput sizemesh/gmsh | triangles sizemesh/gmsh | triangles sizemesh/netgen |")
+    print("|---|---:|---:|---:|---:|")
+    by = {(r["model"], r["phi_c"], r["tool"]): r for r in rows}
+    for (model, phi, tool), r in by.items():
+        if tool != "sizemesh" or not r["metrics"]:
+            continue
+        g, n = by.get((model, phi, "gmsh")), by.get((model, phi, "netgen"))
+        ts = r["metrics"]["triangles"] / r["wall"]
+        tg = g["metrics"]["triangles"] / g["wall"] if g and g["metrics"] else None
+        fmt = lambda x: "%.2f" % x if x else "-"
+        print("| %s | %g | %s | %s | %s |" % (model, phi, fmt(ts / tg if tg else None),
+              fmt(r["metrics"]["triangles"] / g["metrics"]["triangles"] if g and g["metrics"] else None),
+              fmt(r["metrics"]["triangles"] / n["metrics"]["triangles"] if n and n["metrics"] else None)))
+    with open(os.path.join(tmp, "results.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    print("\nmeshes and results.json in", tmp)
+
+
+if __name__ == "__main__":
+    main()
