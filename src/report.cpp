@@ -9,7 +9,11 @@ nlohmann::json report_json(const RunReport& r) {
   using nlohmann::json;
   const ModelInfo& info = r.model->info();
   json j;
-  j["model"] = {{"file", info.path},       {"format", info.format},   {"unit", info.unit},
+  double cad_area = 0;
+  for (int f = 1; f <= r.model->num_faces(); ++f) cad_area += r.model->face_area(f);
+  j["model"] = {{"cad_area", cad_area},
+                {"closed", r.model->closed()},
+                {"file", info.path},       {"format", info.format},   {"unit", info.unit},
                 {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
                 {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing}};
   j["background"] = {{"triangles", r.background_triangles}, {"vertices", r.background_vertices}};
