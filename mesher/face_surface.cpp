@@ -7,7 +7,7 @@ namespace sizemesh {
 FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
     : g_(g), h_(h), face_(face), period_u_(g.face_period_u(face)), period_v_(g.face_period_v(face)) {}
 
-SurfaceSample FaceSurface::eval(const Vec2& uv) {
+SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
   const SurfaceD1 d = g_.eval_face(face_, uv);
   SurfaceSample s;
   s.p = d.p;
@@ -16,7 +16,12 @@ SurfaceSample FaceSurface::eval(const Vec2& uv) {
   const Vec3 n = d.du.cross(d.dv);
   const double len = n.norm();
   s.n = len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
-                                                                             : Vec3(Vec3::Zero());
+                                                                            : Vec3(Vec3::Zero());
+  return s;
+}
+
+SurfaceSample FaceSurface::eval(const Vec2& uv) {
+  SurfaceSample s = eval_shape(uv);
   s.h = h_.at(face_, uv, hint_);
   ++size_queries;
   return s;

@@ -34,6 +34,8 @@ class FaceSurface {
   FaceSurface(const Geometry& g, const SizeFunction& h, int face);
 
   SurfaceSample eval(const Vec2& uv);
+  // The same without the size (h left 0): for moves that do not need it.
+  SurfaceSample eval_shape(const Vec2& uv) const;
   // Nearest point of the surface to xyz, from the start uv; the result is
   // shifted by whole periods to lie closest to the start. False if it fails.
   bool project(const Vec3& xyz, Vec2& uv) const;

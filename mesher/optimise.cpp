@@ -1,65 +1,98 @@
 #include "mesher/optimise.h"
 
+#include <algorithm>
 #include <cstdint>
-#include <unordered_map>
 
 #include "mesher/geometry2d.h"
 
 namespace sizemesh {
 namespace {
 
-constexpr double kCosMin = 0.5;  // triangle normal against the surface normal
-
-uint64_t code(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
+constexpr double kCosMin = 0.5;      // triangle normal against the surface normal
 
 // Shape in space of (a, b, c) at the given corner samples; -1 when the triangle
 // is folded in uv or turned away from the surface.
-double shape(const FaceMesh& fm, const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample& sa,
-             const SurfaceSample& sb, const SurfaceSample& sc) {
+double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample& sa, const SurfaceSample& sb,
+             const SurfaceSample& sc) {
   const double o = orient(ua, ub, uc);
   const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
   if (!(o > 1e-10 * scale)) return -1;
   const Vec3 nt = (sb.p - sa.p).cross(sc.p - sa.p);
   const double lt = nt.norm();
   if (!(lt > 0)) return -1;
-  for (const Vec3* n : {&sa.n, &sb.n, &sc.n})  // zero on poles
-    if (n->squaredNorm() > 0 && nt.dot(*n) < kCosMin * lt) return -1;
+  const SurfaceSample* corners[3] = {&sa, &sb, &sc};
+  for (const SurfaceSample* s : corners)  // normals are zero on poles
+    if (s->n.squaredNorm() > 0 && nt.dot(s->n) < kCosMin * lt) return -1;
   return triangle_quality(sa.p, sb.p, sc.p);
 }
 
 double shape(const FaceMesh& fm, const std::array<int, 3>& t) {
-  return shape(fm, fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]], fm.s[t[0]], fm.s[t[1]], fm.s[t[2]]);
+  return shape(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]], fm.s[t[0]], fm.s[t[1]], fm.s[t[2]]);
+}
+
+// Triangle neighbours: nbr[t][k] is the triangle across edge (t[k], t[k+1]), -1 on the boundary.
+std::vector<std::array<int, 3>> neighbours(const FaceMesh& fm) {
+  struct Half {
+    uint64_t key;
+    int t, k;
+  };
+  std::vector<Half> half;
+  half.reserve(fm.tris.size() * 3);
+  for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = fm.tris[t][k], b = fm.tris[t][(k + 1) % 3];
+      half.push_back({(uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b)), t, k});
+    }
+  std::sort(half.begin(), half.end(), [](const Half& x, const Half& y) {
+    return x.key != y.key ? x.key < y.key : x.t < y.t;
+  });
+  std::vector<std::array<int, 3>> nbr(fm.tris.size(), {-1, -1, -1});
+  for (size_t i = 0; i + 1 < half.size(); ++i)
+    if (half[i].key == half[i + 1].key && (i + 2 >= half.size() || half[i + 2].key != half[i].key) &&
+        (i == 0 || half[i - 1].key != half[i].key)) {
+      nbr[half[i].t][half[i].k] = half[i + 1].t;
+      nbr[half[i + 1].t][half[i + 1].k] = half[i].t;
+    }
+  return nbr;
+}
+
+void repoint(std::vector<std::array<int, 3>>& nbr, int t, int from, int to) {
+  if (t < 0) return;
+  for (int k = 0; k < 3; ++k)
+    if (nbr[t][k] == from) nbr[t][k] = to;
 }
 
 // One sweep of diagonal swaps that raise the worse shape of the two triangles.
-int swap_sweep(FaceMesh& fm) {
-  std::unordered_map<uint64_t, int> edge_tri;
-  edge_tri.reserve(fm.tris.size() * 3);
-  for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) edge_tri[code(fm.tris[t][k], fm.tris[t][(k + 1) % 3])] = t;
-  std::vector<char> touched(fm.tris.size(), 0), pole(fm.tris.size(), 0);
-  for (size_t t = 0; t < fm.tris.size(); ++t) pole[t] = fm.pole_triangle(fm.tris[t]);
+int swap_sweep(FaceMesh& fm, std::vector<std::array<int, 3>>& nbr) {
   int swaps = 0;
-  for (int t1 = 0; t1 < static_cast<int>(fm.tris.size()); ++t1) {
-    for (int k = 0; k < 3 && !touched[t1] && !pole[t1]; ++k) {
-      const int a = fm.tris[t1][k], b = fm.tris[t1][(k + 1) % 3], c = fm.tris[t1][(k + 2) % 3];
-      auto it = edge_tri.find(code(b, a));
-      if (it == edge_tri.end()) continue;
-      const int t2 = it->second;
-      if (touched[t2] || pole[t2]) continue;
-      int d = -1;
-      for (int j = 0; j < 3; ++j)
-        if (fm.tris[t2][j] != a && fm.tris[t2][j] != b) d = fm.tris[t2][j];
-      if (d < 0 || d == c || edge_tri.count(code(c, d)) || edge_tri.count(code(d, c))) continue;
-      const std::array<int, 3> n1{a, d, c}, n2{d, b, c};
+  const int n = static_cast<int>(fm.tris.size());
+  for (int t1 = 0; t1 < n; ++t1) {
+    if (fm.pole_triangle(fm.tris[t1])) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int t2 = nbr[t1][k];
+      if (t2 < 0 || fm.pole_triangle(fm.tris[t2])) continue;
+      const auto T1 = fm.tris[t1], T2 = fm.tris[t2];
+      const int a = T1[k], b = T1[(k + 1) % 3], c = T1[(k + 2) % 3];
+      int j = 0;
+      while (j < 3 && !(T2[j] == b && T2[(j + 1) % 3] == a)) ++j;
+      if (j == 3) continue;
+      const int d = T2[(j + 2) % 3];
+      if (d == c) continue;
+      const std::array<int, 3> n1{c, a, d}, n2{d, b, c};
       if (fm.pole_triangle(n1) || fm.pole_triangle(n2)) continue;
-      const double q_old = std::min(shape(fm, fm.tris[t1]), shape(fm, fm.tris[t2]));
+      const double q_old = std::min(shape(fm, T1), shape(fm, T2));
       const double q_new = std::min(shape(fm, n1), shape(fm, n2));
       if (!(q_new > q_old + 1e-6)) continue;
-      fm.tris[t1] = n1;
-      fm.tris[t2] = n2;
-      touched[t1] = touched[t2] = 1;
+      const int o_ca = nbr[t1][(k + 2) % 3], o_bc = nbr[t1][(k + 1) % 3];
+      const int o_ad = nbr[t2][(j + 1) % 3], o_db = nbr[t2][(j + 2) % 3];
+      fm.tris[t1] = n1;  // edges c-a, a-d, d-c
+      fm.tris[t2] = n2;  // edges d-b, b-c, c-d
+      nbr[t1] = {o_ca, o_ad, t2};
+      nbr[t2] = {o_db, o_bc, t1};
+      repoint(nbr, o_ad, t2, t1);
+      repoint(nbr, o_bc, t1, t2);
       ++swaps;
+      break;  // t1 changed: move on
     }
   }
   return swaps;
@@ -68,24 +101,32 @@ int swap_sweep(FaceMesh& fm) {
 // One sweep of smoothing: each inner node moves towards the mean of its
 // neighbours in space (one Gauss-Newton step in uv), kept only if the worst
 // shape around it does not get worse.
-int smooth_sweep(FaceMesh& fm, FaceSurface& fs) {
+int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
   const int n = fm.num_nodes();
-  std::vector<std::vector<int>> node_tris(n);
-  for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) node_tris[fm.tris[t][k]].push_back(t);
+  std::vector<int> start(n + 1, 0), tri_of;
+  for (const auto& t : fm.tris)
+    for (int v : t) ++start[v + 1];
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  tri_of.resize(start[n]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
+      for (int v : fm.tris[t]) tri_of[fill[v]++] = t;
+  }
   int moved = 0;
   for (int i = 0; i < n; ++i) {
-    if (fm.boundary(i) || node_tris[i].empty()) continue;
+    if (fm.boundary(i) || start[i] == start[i + 1]) continue;
     Vec3 target = Vec3::Zero();
     int cnt = 0;
     double old_q = 2;
-    for (int t : node_tris[i]) {
-      for (int v : fm.tris[t])
+    for (int e = start[i]; e < start[i + 1]; ++e) {
+      const auto& tr = fm.tris[tri_of[e]];
+      for (int v : tr)
         if (v != i) {
           target += fm.s[v].p;
           ++cnt;
         }
-      if (!fm.pole_triangle(fm.tris[t])) old_q = std::min(old_q, shape(fm, fm.tris[t]));
+      if (!fm.pole_triangle(tr)) old_q = std::min(old_q, shape(fm, tr));
     }
     target /= cnt;
     const SurfaceSample& si = fm.s[i];
@@ -98,11 +139,12 @@ int smooth_sweep(FaceMesh& fm, FaceSurface& fs) {
     if (!std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
     for (double f : {1.0, 0.5}) {
       const Vec2 uv = fm.uv[i] + f * step;
-      const SurfaceSample s = fs.eval(uv);
+      SurfaceSample s = fs.eval_shape(uv);
+      s.h = si.h;
       double new_q = 2;
       bool ok = true;
-      for (int t : node_tris[i]) {
-        const auto& tr = fm.tris[t];
+      for (int e = start[i]; e < start[i + 1] && ok; ++e) {
+        const auto& tr = fm.tris[tri_of[e]];
         Vec2 u[3];
         const SurfaceSample* p[3];
         for (int k = 0; k < 3; ++k) {
@@ -110,13 +152,12 @@ int smooth_sweep(FaceMesh& fm, FaceSurface& fs) {
           p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
         }
         if (fm.pole_triangle(tr)) {
-          if (!(orient(u[0], u[1], u[2]) > 0)) ok = false;
+          ok = orient(u[0], u[1], u[2]) > 0;
           continue;
         }
-        const double q = shape(fm, u[0], u[1], u[2], *p[0], *p[1], *p[2]);
+        const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2]);
         if (q < 0) ok = false;
         new_q = std::min(new_q, q);
-        if (!ok) break;
       }
       if (!ok || new_q < old_q) continue;
       fm.uv[i] = uv;
@@ -131,14 +172,15 @@ int smooth_sweep(FaceMesh& fm, FaceSurface& fs) {
 }  // namespace
 
 void optimise(FaceMesh& fm, FaceSurface& fs, int passes) {
+  if (passes <= 0 || fm.tris.empty()) return;
+  std::vector<std::array<int, 3>> nbr = neighbours(fm);
   for (int p = 0; p < passes; ++p) {
-    for (int k = 0; k < 4 && swap_sweep(fm) > 0; ++k) {
+    for (int k = 0; k < 4 && swap_sweep(fm, nbr) > 0; ++k) {
     }
     smooth_sweep(fm, fs);
   }
-  if (passes > 0)
-    for (int k = 0; k < 4 && swap_sweep(fm) > 0; ++k) {
-    }
+  for (int k = 0; k < 4 && swap_sweep(fm, nbr) > 0; ++k) {
+  }
 }
 
 }  // namespace sizemesh
