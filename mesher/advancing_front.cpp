@@ -1,8 +1,6 @@
 #include "mesher/advancing_front.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <queue>
@@ -403,8 +401,8 @@ class Front {
     int best = -1;
     double best_q = -1;
     for (size_t i = 0; i < cands.size(); ++i) {
-      const double q = check(a, b, cands[i], lv);
-      if (getenv("AFDBG")) fprintf(stderr, "edge %d %d cand %d rank %g q %g\n", a, b, cands[i].node, cands[i].rank, q);
+      const bool is_ideal = cands[i].node < 0 && !cands[i].in_space;
+      const double q = is_ideal ? q_ideal : check(a, b, cands[i], lv);
       if (q < 0) continue;
       if (q >= lv.q_min) {
         best = static_cast<int>(i);

@@ -8,7 +8,8 @@
 namespace sizemesh {
 namespace {
 
-constexpr double kCosMin = 0.5;      // triangle normal against the surface normal
+constexpr double kCosMin = 0.5;    // triangle normal against the surface normal
+constexpr double kSwapBelow = 0.8;  // only triangles worse than this look for a better diagonal
 
 // Shape in space of (a, b, c) at the given corner samples; -1 when the triangle
 // is folded in uv or turned away from the surface.
@@ -66,8 +67,10 @@ void repoint(std::vector<std::array<int, 3>>& nbr, int t, int from, int to) {
 int swap_sweep(FaceMesh& fm, std::vector<std::array<int, 3>>& nbr) {
   int swaps = 0;
   const int n = static_cast<int>(fm.tris.size());
+  std::vector<double> q(n);
+  for (int t = 0; t < n; ++t) q[t] = fm.pole_triangle(fm.tris[t]) ? 2.0 : shape(fm, fm.tris[t]);
   for (int t1 = 0; t1 < n; ++t1) {
-    if (fm.pole_triangle(fm.tris[t1])) continue;
+    if (fm.pole_triangle(fm.tris[t1]) || q[t1] > kSwapBelow) continue;
     for (int k = 0; k < 3; ++k) {
       const int t2 = nbr[t1][k];
       if (t2 < 0 || fm.pole_triangle(fm.tris[t2])) continue;
@@ -80,9 +83,11 @@ int swap_sweep(FaceMesh& fm, std::vector<std::array<int, 3>>& nbr) {
       if (d == c) continue;
       const std::array<int, 3> n1{c, a, d}, n2{d, b, c};
       if (fm.pole_triangle(n1) || fm.pole_triangle(n2)) continue;
-      const double q_old = std::min(shape(fm, T1), shape(fm, T2));
-      const double q_new = std::min(shape(fm, n1), shape(fm, n2));
-      if (!(q_new > q_old + 1e-6)) continue;
+      const double q_old = std::min(q[t1], q[t2]);
+      const double q1 = shape(fm, n1), q2 = shape(fm, n2);
+      if (!(std::min(q1, q2) > q_old + 1e-6)) continue;
+      q[t1] = q1;
+      q[t2] = q2;
       const int o_ca = nbr[t1][(k + 2) % 3], o_bc = nbr[t1][(k + 1) % 3];
       const int o_ad = nbr[t2][(j + 1) % 3], o_db = nbr[t2][(j + 2) % 3];
       fm.tris[t1] = n1;  // edges c-a, a-d, d-c
