@@ -336,8 +336,13 @@ class Front {
     d /= dl;
     Candidate ideal;
     ideal.uv = m + height * d;
-    ideal.s = fs_.eval(ideal.uv);
-    const Eigen::Matrix2d Mp = ideal.s.metric();
+    bool ideal_ok = std::isfinite(ideal.uv.x()) && std::isfinite(ideal.uv.y());
+    try {  // the ideal point may fall outside the surface's parameter range
+      if (ideal_ok) ideal.s = fs_.eval(ideal.uv);
+    } catch (...) {
+      ideal_ok = false;
+    }
+    const Eigen::Matrix2d Mp = ideal_ok ? ideal.s.metric() : Mm;
     // Ranking metric: the midpoint's, except on a pole where it is singular.
     const Eigen::Matrix2d M = pole_edge ? Mp : Mm;
 
@@ -358,7 +363,6 @@ class Front {
     gather(blo, bhi);
     // New points: the uv ideal point, and when it is poor the one placed in space.
     const double new_rank = 0.55;
-    const bool ideal_ok = std::isfinite(ideal.uv.x()) && std::isfinite(ideal.uv.y());
     const double q_ideal = ideal_ok ? check(a, b, ideal, lv) : -1;
     Candidate c3;
     bool have_3d = false;
@@ -449,9 +453,13 @@ class Front {
     const double height = std::sqrt(std::max(side * side - 0.25 * ab.squaredNorm(), 0.05 * side * side));
     const Vec3 target = 0.5 * (pa + pb) + height * t;
     Vec2 uv = std::isfinite(guess.x()) && std::isfinite(guess.y()) ? guess : m;
-    if (!fs_.project(target, uv)) return false;
-    out.uv = uv;
-    out.s = fs_.eval(uv);
+    try {
+      if (!fs_.project(target, uv)) return false;
+      out.uv = uv;
+      out.s = fs_.eval(uv);
+    } catch (...) {
+      return false;
+    }
     out.node = -1;
     return (out.s.p - target).norm() <= 0.5 * height;
   }
