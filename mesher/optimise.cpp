@@ -144,7 +144,12 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
     if (!std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
     for (double f : {1.0, 0.5}) {
       const Vec2 uv = fm.uv[i] + f * step;
-      SurfaceSample s = fs.eval_shape(uv);
+      SurfaceSample s;
+      try {
+        s = fs.eval_shape(uv);
+      } catch (...) {
+        continue;  // outside what the surface can evaluate: stay
+      }
       s.h = si.h;
       double new_q = 2;
       bool ok = true;
