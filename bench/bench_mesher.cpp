@@ -46,10 +46,11 @@ void run(const std::string& name, const char* size_name, const Model& model, con
               q.below_12, q.below_24, q.boundary_edges, q.nonmanifold_edges, q.inverted,
               (q.area - cad_area) / cad_area, q.size_conformity, m.failures.size(), m.stats.fronts_3d);
   std::printf("    stages: curves %.3fs, faces %.3fs (front %.3fs + optimise %.3fs summed), %lld size queries, "
-              "worst angle %.2f deg; share below 12 deg %.4f%%, below 24 deg %.3f%%\n",
+              "worst angle %.2f deg; share below 12 deg %.4f%%, below 24 deg %.3f%%; faces retried %d "
+              "(last resort %d)\n",
               m.stats.seconds_curves, m.stats.seconds_faces, m.stats.seconds_front, m.stats.seconds_optimise,
               m.stats.size_queries, q.worst_angle, 100.0 * q.below_12 / std::max(1, q.triangles),
-              100.0 * q.below_24 / std::max(1, q.triangles));
+              100.0 * q.below_24 / std::max(1, q.triangles), m.stats.faces_retried, m.stats.faces_relaxed);
   std::printf("    min-angle histogram (6 deg bins):");
   for (int c : q.histogram) std::printf(" %d", c);
   std::printf("\n");

@@ -71,11 +71,10 @@ struct Level {
   bool take_best;    // if none reaches q_min, take the best valid one
 };
 // Strategy 0 prefers well shaped triangles. When its front gets stuck the
-// face is meshed again: strategy 1 is the same but at last accepts any triangle
-// valid in uv (never leave a hole; the optimiser repairs what it can and the
-// quality report shows the rest); strategy 2 takes the valid candidate nearest
-// the ideal point (it folds less on coarse, strongly curved faces); strategy 3
-// also relaxes the normal check step by step.
+// face is meshed again: strategy 1 takes the valid candidate nearest the ideal
+// point (it folds less on coarse, strongly curved faces); strategies 2 and 3
+// repeat 0 and 1 but at last accept any triangle valid in uv (never leave a
+// hole; the optimiser repairs what it can and the quality report shows the rest).
 constexpr int kMaxTries = 6;
 constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
     {{0.45, 0.5, 0.5, 1.5, false},
@@ -84,18 +83,18 @@ constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
      {0.30, 0.3, 0.4, 2.0, true},
      {0.0, 0.05, 0.25, 4.0, true},
      {0.0, 0.0, 0.15, 8.0, true}},
+    {{0.05, 0.5, 0.5, 1.5, false},
+     {0.05, 0.5, 0.5, 1.5, false},
+     {0.02, 0.3, 0.4, 2.0, true},
+     {0.02, 0.3, 0.4, 2.0, true},
+     {0.0, 0.05, 0.25, 4.0, true},
+     {0.0, 0.0, 0.15, 8.0, true}},
     {{0.45, 0.5, 0.5, 1.5, false},
      {0.45, 0.5, 0.5, 1.5, false},
      {0.30, 0.3, 0.4, 2.0, true},
      {0.0, 0.05, 0.25, 4.0, true},
      {0.0, 0.0, 0.15, 8.0, true},
      {0.0, -2.0, 0.1, 8.0, true}},
-    {{0.05, 0.5, 0.5, 1.5, false},
-     {0.05, 0.5, 0.5, 1.5, false},
-     {0.02, 0.3, 0.4, 2.0, true},
-     {0.02, 0.3, 0.4, 2.0, true},
-     {0.0, 0.0, 0.25, 4.0, true},
-     {0.0, -2.0, 0.15, 8.0, true}},
     {{0.05, 0.3, 0.4, 2.0, false},
      {0.02, 0.1, 0.3, 2.0, true},
      {0.0, 0.0, 0.25, 4.0, true},
@@ -282,7 +281,18 @@ class Front {
     for (const Vec3* n : normals)
       if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return -5;
     const double q = triangle_quality(pa, pb, pc);
-    return q > 1e-6 ? q : -6;
+    if (!(q > 1e-6)) return -6;
+    // And at the uv centroid, where a curved surface may turn away between corners.
+    if (lv.cos_min > -1) {
+      Vec3 nc;
+      try {
+        nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
+      } catch (...) {
+        return -9;
+      }
+      if (nc.squaredNorm() > 0 && nt.dot(nc) <= std::max(lv.cos_min, 0.0) * lt) return -9;
+    }
+    return q;
   }
 
   // Point x within a small fraction of the segment's length of segment pq (space).

@@ -25,6 +25,7 @@ struct FaceResult {
   std::string reason;
   long long size_queries = 0;
   int fronts_3d = 0;
+  int strategy = 0;  // front strategy that closed the face
   double seconds_front = 0, seconds_optimise = 0;
 };
 
@@ -41,6 +42,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
       r.mesh = boundary;
       fr = advancing_front(r.mesh, fs, strategy);
       r.fronts_3d += fr.fronts_3d;
+      r.strategy = strategy;
     }
     r.seconds_front = seconds_since(t0);
     if (!fr.ok) {
@@ -90,6 +92,8 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
     FaceResult& r = faces[f];
     out.stats.size_queries += r.size_queries;
     out.stats.fronts_3d += r.fronts_3d;
+    out.stats.faces_retried += r.strategy > 0;
+    out.stats.faces_relaxed += r.strategy >= 2;
     out.stats.seconds_front += r.seconds_front;
     out.stats.seconds_optimise += r.seconds_optimise;
     if (!r.ok) {

@@ -28,6 +28,8 @@ struct MeshStats {
   double seconds_optimise = 0;  // summed over faces: swaps and smoothing
   long long size_queries = 0;   // calls of SizeFunction::at / at_xyz
   int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
+  int faces_retried = 0;        // faces whose front got stuck and were meshed again
+  int faces_relaxed = 0;        // of those, faces that needed the last-resort strategies
 };
 
 struct SurfaceMesh {
