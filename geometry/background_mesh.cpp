@@ -193,8 +193,13 @@ class Builder {
     for (int c = 0; c < static_cast<int>(chains_.size()); ++c)
       for (size_t i = 1; i < chains_[c].vertex.size(); ++i)
         if (chains_[c].vertex[i - 1] != chains_[c].vertex[i]) add(chains_[c].vertex[i - 1], chains_[c].vertex[i], c + 1);
-    for (const auto& t : bg_.tris)
-      for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3], 0);
+    bg_.tri_edges.resize(bg_.tris.size());
+    for (size_t t = 0; t < bg_.tris.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = bg_.tris[t][k], b = bg_.tris[t][(k + 1) % 3];
+        add(a, b, 0);
+        bg_.tri_edges[t][k] = index.at(edge_key(a, b));
+      }
   }
 
   void build_uses() {
@@ -245,12 +250,9 @@ double BackgroundMesh::area() const {
 }
 
 std::vector<int> BackgroundMesh::edge_valence() const {
-  std::unordered_map<uint64_t, int> index;
-  index.reserve(edges.size() * 2);
-  for (int e = 0; e < static_cast<int>(edges.size()); ++e) index.emplace(edge_key(edges[e][0], edges[e][1]), e);
   std::vector<int> val(edges.size(), 0);
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) ++val[index.at(edge_key(t[k], t[(k + 1) % 3]))];
+  for (const auto& te : tri_edges)
+    for (int e : te) ++val[e];
   return val;
 }
 

@@ -38,6 +38,7 @@ struct BackgroundMesh {
   // Edges: #E unique vertex pairs (a < b)
   std::vector<std::array<int, 2>> edges;
   std::vector<int> edge_curve; // curve id per edge, 0 for edges inside a face
+  std::vector<std::array<int, 3>> tri_edges;  // #T edge ids of triangle sides (k, k+1)
   // Per face (index face id - 1)
   std::vector<FacePatch> patches;
   // Vertex -> (face, local vertex) uses, CSR: uses of v are [use_start[v], use_start[v+1])

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <unordered_map>
 
 #include "sizing/curvature_size.h"
 #include "sizing/proximity_size.h"
@@ -25,18 +24,10 @@ double face_beta(const SizingParams& p, int face) {
 void gradation_bounds(const BackgroundMesh& bg, const SizingParams& p, SizeMap& m) {
   m.tri_log_beta.resize(bg.num_triangles());
   for (int t = 0; t < bg.num_triangles(); ++t) m.tri_log_beta[t] = std::log(face_beta(p, bg.tri_face[t]));
-  std::unordered_map<uint64_t, int> index;
-  index.reserve(bg.edges.size() * 2);
-  auto key = [](int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
-  };
-  for (int e = 0; e < static_cast<int>(bg.edges.size()); ++e) index.emplace(key(bg.edges[e][0], bg.edges[e][1]), e);
   m.edge_log_beta.assign(bg.edges.size(), std::log(p.beta));
   std::vector<bool> seen(bg.edges.size(), false);
   for (int t = 0; t < bg.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int e = index.at(key(bg.tris[t][k], bg.tris[t][(k + 1) % 3]));
+    for (int e : bg.tri_edges[t]) {
       m.edge_log_beta[e] = seen[e] ? std::min(m.edge_log_beta[e], m.tri_log_beta[t]) : m.tri_log_beta[t];
       seen[e] = true;
     }
