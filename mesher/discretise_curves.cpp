@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <tbb/parallel_for.h>
 
@@ -11,6 +12,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Most a single segment may turn: keeps loops valid in uv when h exceeds a curve's radius.
 constexpr double kMaxTurnPerSegment = kPi / 3;
+// Guard against a size map far below the model's scale.
+constexpr int kMaxSegments = 1000000;
 
 // Integral of ds/h along a curve sampled at m+1 parameters (trapezoid on chords).
 struct Sampled {
@@ -39,9 +42,9 @@ Sampled sample_curve(const Geometry& g, const SizeFunction& h, int curve, int fa
         hk = 0;
       }
     }
-    if (!(hk > 0)) hk = h.at_xyz(p[k]);
+    if (!(hk > 0) || !std::isfinite(hk)) hk = h.at_xyz(p[k]);
     ++queries;
-    hs[k] = hk;
+    hs[k] = hk > 0 && std::isfinite(hk) ? hk : std::numeric_limits<double>::infinity();  // no size: no bound
   }
   for (int k = 1; k <= m; ++k) {
     const double ds = (p[k] - p[k - 1]).norm();
@@ -106,9 +109,10 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
   tbb::parallel_for(1, nc + 1, [&](int c) {
     if (g.curve_degenerated(c)) return;
     Sampled coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
-    const int m = std::clamp(static_cast<int>(8 * coarse.F.back()) + 32, 32, 4000);
+    const int m = static_cast<int>(std::clamp(8 * coarse.F.back() + 32, 32.0, 4000.0));
     sampled[c] = m > 32 ? sample_curve(g, h, c, curve_face[c], m, queries[c]) : std::move(coarse);
-    int nn = std::max(1, static_cast<int>(std::lround(sampled[c].F.back())));
+    const double integral = std::min(sampled[c].F.back(), double(kMaxSegments));
+    int nn = std::max(1, static_cast<int>(std::lround(integral)));
     nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
     if (g.curve_start_point(c) == g.curve_end_point(c)) nn = std::max(nn, 3);
     n[c] = nn;

@@ -1,11 +1,17 @@
 #include "mesher/face_surface.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sizemesh {
 
 FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
-    : g_(g), h_(h), face_(face), period_u_(g.face_period_u(face)), period_v_(g.face_period_v(face)) {}
+    : g_(g),
+      h_(h),
+      face_(face),
+      period_u_(g.face_period_u(face)),
+      period_v_(g.face_period_v(face)),
+      fallback_h_(std::max(g.face_boundary_length(face) / 12, 1e-300)) {}
 
 SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
   const SurfaceD1 d = g_.eval_face(face_, uv);
@@ -24,6 +30,7 @@ SurfaceSample FaceSurface::eval(const Vec2& uv) {
   SurfaceSample s = eval_shape(uv);
   s.h = h_.at(face_, uv, hint_);
   ++size_queries;
+  if (!(s.h > 0) || !std::isfinite(s.h)) s.h = fallback_h_;  // a size map with a hole
   return s;
 }
 

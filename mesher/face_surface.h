@@ -52,6 +52,7 @@ class FaceSurface {
   int face_;
   int hint_ = -1;
   double period_u_, period_v_;
+  double fallback_h_;  // used where h is not a positive number
 };
 
 }  // namespace sizemesh
