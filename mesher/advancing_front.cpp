@@ -26,7 +26,7 @@ class EdgeGrid {
     const Vec2 span = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
     lo_ = lo - 1e-6 * span;
     const Vec2 span2 = span * (1 + 2e-6);
-    n_ = std::clamp(static_cast<int>(1.5 * std::sqrt(double(n_edges))), 1, 400);
+    n_ = std::clamp(static_cast<int>(1.5 * std::sqrt(double(n_edges))), 1, 512);
     cell_ = span2 / n_;
     cells_.assign(size_t(n_) * n_, {});
   }
@@ -121,6 +121,7 @@ class Front {
     lo_ = lo;
     hi_ = hi;
     grid_.init(lo, hi, n_edges);
+    grid_edges_ = std::max<size_t>(n_edges, 64);
     // Triangles on each edge in space (by node identity, across seams): a
     // boundary edge has one on the other face, a seam edge none yet.
     for (const auto& loop : fm_.loops)
@@ -203,6 +204,14 @@ class Front {
     grid_.insert(id, fm_.uv[a], fm_.uv[b]);
     heap_.push({e.key, id});
     ++alive_;
+    if (edges_.size() >= 4 * grid_edges_) rebuild_grid();
+  }
+  // The grid keeps dead edges; rebuilt finer and with the live ones only as the front grows.
+  void rebuild_grid() {
+    grid_edges_ = edges_.size();
+    grid_.init(lo_, hi_, static_cast<int>(edges_.size()));
+    for (int id = 0; id < static_cast<int>(edges_.size()); ++id)
+      if (edges_[id].alive) grid_.insert(id, fm_.uv[edges_[id].a], fm_.uv[edges_[id].b]);
   }
   void kill_edge(int id) {
     edges_[id].alive = false;
@@ -504,6 +513,7 @@ class Front {
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap_;
   EdgeGrid grid_;
+  size_t grid_edges_ = 0;  // edges when the grid was last built
   Vec2 lo_, hi_;
   int alive_ = 0;
   int fronts_3d_ = 0;
