@@ -108,12 +108,23 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
   std::vector<long long> queries(nc + 1, 0);
   tbb::parallel_for(1, nc + 1, [&](int c) {
     if (g.curve_degenerated(c)) return;
-    Sampled coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
-    const int m = static_cast<int>(std::clamp(8 * coarse.F.back() + 32, 32.0, 4000.0));
-    sampled[c] = m > 32 ? sample_curve(g, h, c, curve_face[c], m, queries[c]) : std::move(coarse);
-    const double integral = std::min(sampled[c].F.back(), double(kMaxSegments));
-    int nn = std::max(1, static_cast<int>(std::lround(integral)));
-    nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
+    int nn = 1;
+    try {
+      Sampled coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
+      const int m = static_cast<int>(std::clamp(8 * coarse.F.back() + 32, 32.0, 4000.0));
+      sampled[c] = m > 32 ? sample_curve(g, h, c, curve_face[c], m, queries[c]) : std::move(coarse);
+      const double integral = std::min(sampled[c].F.back(), double(kMaxSegments));
+      nn = std::max(1, static_cast<int>(std::lround(integral)));
+      nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
+    } catch (...) {  // the kernel cannot evaluate it: equal parameter steps
+      sampled[c] = Sampled();
+      double t0, t1;
+      g.curve_range(c, t0, t1);
+      for (int k = 0; k <= 8; ++k) {
+        sampled[c].t.push_back(t0 + (t1 - t0) * k / 8);
+        sampled[c].F.push_back(k);
+      }
+    }
     if (g.curve_start_point(c) == g.curve_end_point(c)) nn = std::max(nn, 3);
     n[c] = nn;
   });

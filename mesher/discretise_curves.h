@@ -33,9 +33,11 @@ struct CurveMesh {
   long long size_queries = 0;
 };
 
-// Segment count and node placement per curve: n = max(1, round(integral ds/h)),
-// nodes at equal steps of that integral; closed curves and boundary loops get
-// at least 3 segments; degenerate curves (poles) none.
+// Segment count and node placement per curve: n = max(1, round(integral ds/h))
+// (Eq. 1a), nodes at equal steps of that integral (Eq. 1b). Beyond the paper,
+// for valid loops in uv when h exceeds a curve's radius: no segment turns more
+// than 60 degrees, closed curves and boundary loops get at least 3 segments.
+// Degenerate curves (poles) get none.
 CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h);
 
 }  // namespace sizemesh

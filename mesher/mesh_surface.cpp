@@ -73,7 +73,14 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
   SurfaceMesh out;
   // 1. Curves: one unit mesh per curve (paper 2.1), shared by its faces.
   auto t0 = Clock::now();
-  CurveMesh cm = discretise_curves(g, h);
+  CurveMesh cm;
+  try {
+    cm = discretise_curves(g, h);
+  } catch (...) {  // nothing can be meshed without the curves
+    for (int f = 1; f <= g.num_faces(); ++f)
+      out.failures.push_back({f, "the curves could not be discretised (geometry kernel error)"});
+    return out;
+  }
   out.stats.seconds_curves = seconds_since(t0);
   out.stats.size_queries += cm.size_queries;
 
