@@ -1,6 +1,14 @@
-// The surface mesher (paper 4.1), top level: discretise every curve once,
-// mesh every face in its uv domain in parallel, improve, and assemble one
-// conforming mesh whose nodes on B-rep points and curves are shared by index.
+// The surface mesher (paper 4.1), top level:
+//   1. discretise every curve once into a unit mesh (paper 2.1, Eq. 1a-1b),
+//      shared by every face that uses it          (discretise_curves.h)
+//   2. per face, in parallel (TBB), independent of the others:
+//      a. initial front: boundary loops in uv       (face_boundary.h)
+//      b. advancing front under M = J^T J / h^2, Tremel's procedures adaptively;
+//         a face whose front gets stuck is meshed again with a more robust
+//         strategy                                    (advancing_front.h)
+//      c. swaps and smoothing                         (optimise.h)
+//   3. assemble in face order: nodes on B-rep points and curves shared by index,
+//      triangles flipped where the face is reversed in its shell.
 //
 // Inputs:
 //   g   the B-rep (thread-safe)
