@@ -6,6 +6,7 @@
 #include <queue>
 #include <unordered_map>
 
+#include "mesher/edge_grid.h"
 #include "mesher/geometry2d.h"
 
 namespace sizemesh {
@@ -16,50 +17,6 @@ struct FrontEdge {
   bool alive = true;
   int tries = 0;
   double key = 0;  // metric length (space chord / h), shortest first
-};
-
-// Uniform grid over the uv box of the boundary; each front edge is listed in
-// every cell its box touches.
-class EdgeGrid {
- public:
-  void init(const Vec2& lo, const Vec2& hi, int n_edges) {
-    const Vec2 span = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
-    lo_ = lo - 1e-6 * span;
-    const Vec2 span2 = span * (1 + 2e-6);
-    n_ = std::clamp(static_cast<int>(1.5 * std::sqrt(double(n_edges))), 1, 512);
-    cell_ = span2 / n_;
-    cells_.assign(size_t(n_) * n_, {});
-  }
-  void insert(int e, const Vec2& a, const Vec2& b) {
-    int i0, j0, i1, j1;
-    range(a.cwiseMin(b), a.cwiseMax(b), i0, j0, i1, j1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) cells_[size_t(j) * n_ + i].push_back(e);
-  }
-  template <class F>
-  void query(const Vec2& lo, const Vec2& hi, F&& f) const {
-    int i0, j0, i1, j1;
-    range(lo, hi, i0, j0, i1, j1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
-        for (int e : cells_[size_t(j) * n_ + i]) f(e);
-  }
-
- private:
-  void range(const Vec2& lo, const Vec2& hi, int& i0, int& j0, int& i1, int& j1) const {
-    auto ci = [&](double x, int d) {
-      const double c = (x - lo_[d]) / cell_[d];
-      if (!(c > 0)) return 0;
-      return static_cast<int>(std::min<double>(c, n_ - 1));
-    };
-    i0 = ci(lo.x(), 0);
-    j0 = ci(lo.y(), 1);
-    i1 = ci(hi.x(), 0);
-    j1 = ci(hi.y(), 1);
-  }
-  Vec2 lo_, cell_;
-  int n_ = 1;
-  std::vector<std::vector<int>> cells_;
 };
 
 // How demanding a try at an edge is; later tries accept worse triangles.
