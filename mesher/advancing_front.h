@@ -4,6 +4,16 @@
 // triangle, placed in space and projected onto the surface; every triangle is
 // also checked in space (normal agrees with the surface, shape).
 //
+// One step: take the shortest front edge (metric length = chord / h); place
+// the ideal point equilateral in the metric at the edge's midpoint (side s = 1,
+// bounded by the edge's own length); candidates are the front nodes within a
+// metric ball around it (found through an EdgeGrid) and the ideal point itself,
+// ranked by metric distance; accept the first triangle that is counter-
+// clockwise in uv, crosses no front edge, holds no front node, repeats no edge
+// in space (seams), faces the surface normal at its corners and centroid, and
+// has a good shape in space. An edge with no acceptable triangle is tried again
+// later with looser limits; a pole segment gets its ring of triangles first.
+//
 // Input:  fm with boundary nodes and loops (face_boundary()), fs its sampler.
 // Output: fm.tris (counter-clockwise in uv) and the nodes created inside the
 //         face; FrontResult says whether the front closed and, if not, why.
