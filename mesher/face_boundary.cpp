@@ -131,21 +131,26 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
       // Pole segment: split it like the ring of the mesh next to it (one
       // wanted size away), estimated from the previous node's offset.
       const Entry& x = loop[(i + n - 1) % n];
-      const Vec2 offset = x.uv - a.uv;
-      const SurfaceSample sx = fs.eval(x.uv);
-      double ring = 0;
-      Vec3 prev = fs.eval(a.uv + offset).p;
-      const int J = 16;
-      for (int j = 1; j <= J; ++j) {
-        const Vec3 q = fs.eval(a.uv + (b.uv - a.uv) * (double(j) / J) + offset).p;
-        ring += (q - prev).norm();
-        prev = q;
+      int k = 1;
+      try {
+        const Vec2 offset = x.uv - a.uv;
+        const SurfaceSample sx = fs.eval(x.uv);
+        double ring = 0;
+        Vec3 prev = fs.eval_shape(a.uv + offset).p;
+        const int J = 16;
+        for (int j = 1; j <= J; ++j) {
+          const Vec3 q = fs.eval_shape(a.uv + (b.uv - a.uv) * (double(j) / J) + offset).p;
+          ring += (q - prev).norm();
+          prev = q;
+        }
+        // The ring grows about linearly with the distance from the pole, so the
+        // ring one h away has about ring/dist edges of length h.
+        const double dist = (sx.p - sa.p).norm();
+        const double edges = dist > 0 ? ring / dist : ring / std::max(sx.h, 1e-300);
+        if (std::isfinite(edges)) k = std::clamp(static_cast<int>(std::lround(edges)), 1, 128);
+      } catch (...) {
+        k = 1;  // the surface cannot be evaluated off the pole: one segment
       }
-      // The ring grows about linearly with the distance from the pole, so the
-      // ring one h away has about ring/dist edges of length h.
-      const double dist = (sx.p - sa.p).norm();
-      const double edges = dist > 0 ? ring / dist : ring / std::max(sx.h, 1e-300);
-      const int k = std::clamp(static_cast<int>(std::lround(edges)), 1, 128);
       for (int j = 1; j < k; ++j) {
         const Vec2 uv = a.uv + (b.uv - a.uv) * (double(j) / k);
         SurfaceSample sj = fs.eval(uv);

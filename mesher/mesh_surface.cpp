@@ -3,7 +3,7 @@
 #include <chrono>
 #include <memory>
 
-#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #include <tbb/parallel_for.h>
 
 #include "mesher/advancing_front.h"
@@ -63,13 +63,8 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   return r;
 }
 
-}  // namespace
-
-SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
-  std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
-
+// The stages, in the arena mesh_surface() sets up.
+SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
   SurfaceMesh out;
   // 1. Curves: one unit mesh per curve (paper 2.1), shared by its faces.
   auto t0 = Clock::now();
@@ -133,6 +128,16 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
       out.tri_uv.push_back(uv);
     }
   }
+  return out;
+}
+
+}  // namespace
+
+SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
+  // A local arena: the thread count applies to this call only.
+  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+  SurfaceMesh out;
+  arena.execute([&] { out = mesh_in_arena(g, h, o); });
   return out;
 }
 
