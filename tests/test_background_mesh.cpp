@@ -4,6 +4,11 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <STEPControl_Writer.hxx>
+
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -171,4 +176,32 @@ TEST_CASE("analytic solids: box, sphere, cylinder, torus and a plate with a hole
     for (int f = 1; f <= m.num_faces(); ++f) faces_with_hole += m.face_loops(f).size() == 2;
     CHECK(faces_with_hole == 2);
   }
+}
+
+TEST_CASE("face names from a STEP file are kept with their ids") {
+  // A box written by OpenCASCADE's STEP writer, one face renamed in the text.
+  const std::string path = "/tmp/sizemesh_named_" + std::to_string(::getpid()) + ".step";
+  STEPControl_Writer writer;
+  writer.Transfer(BRepPrimAPI_MakeBox(1.0, 2.0, 3.0).Shape(), STEPControl_AsIs);
+  REQUIRE(writer.Write(path.c_str()) == IFSelect_RetDone);
+  std::string text;
+  {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  const size_t at = text.find("ADVANCED_FACE('");
+  REQUIRE(at != std::string::npos);
+  text.insert(at + std::string("ADVANCED_FACE('").size(), "inlet");
+  std::ofstream(path) << text;
+  Model m = load_model(path);
+  int named = 0;
+  for (int f = 1; f <= m.num_faces(); ++f)
+    if (!m.face_name(f).empty()) {
+      ++named;
+      CHECK(m.face_name(f) == "inlet");
+    }
+  CHECK(named == 1);
+  std::remove(path.c_str());
 }
