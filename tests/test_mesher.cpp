@@ -381,3 +381,96 @@ TEST_CASE("a size map with a hole still gives a valid closed mesh", "[mesher]") 
   const MeshQuality q = mesh_quality(m, box, h_ref);
   require_valid_closed(box, m, q, std::sqrt(3.0));
 }
+
+namespace {
+
+// One rectangular face [0, L] x [0, W] (z = 0) with a strongly distorted
+// parametrisation, built analytically: S(u, v) = (x(u), y(v), 0) with
+// x(u) = L (0.05 u + 0.95 u^3) and y(v) = W (0.1 v + 0.9 v^2).
+// Points 1..4 at the corners, curves 1..4 the sides (t in [0, 1]).
+class DistortedRectangle final : public Geometry {
+ public:
+  DistortedRectangle(double L, double W) : L_(L), W_(W) {}
+  int num_faces() const override { return 1; }
+  int num_curves() const override { return 4; }
+  int num_points() const override { return 4; }
+  SurfaceD1 eval_face(int, const Vec2& uv) const override {
+    return {Vec3(x(uv.x()), y(uv.y()), 0), Vec3(dx(uv.x()), 0, 0), Vec3(0, dy(uv.y()), 0)};
+  }
+  bool max_curvature(int, const Vec2&, double& k) const override {
+    k = 0;
+    return true;
+  }
+  bool face_reversed(int) const override { return false; }
+  UVBox face_uv_bounds(int) const override { return {Vec2(0, 0), Vec2(1, 1)}; }
+  double face_period_u(int) const override { return 0; }
+  double face_period_v(int) const override { return 0; }
+  double face_area(int) const override { return L_ * W_; }
+  double face_boundary_length(int) const override { return 2 * (L_ + W_); }
+  std::vector<FaceLoop> face_loops(int) const override {
+    return {{{1, false, 0}, {2, false, 0}, {3, false, 0}, {4, false, 0}}};
+  }
+  bool project_to_face(int, const Vec3& p, Vec2& uv) const override {
+    for (int it = 0; it < 50; ++it) {
+      uv.x() -= (x(uv.x()) - p.x()) / dx(uv.x());
+      uv.y() -= (y(uv.y()) - p.y()) / dy(uv.y());
+    }
+    return true;
+  }
+  void curve_range(int, double& t0, double& t1) const override {
+    t0 = 0;
+    t1 = 1;
+  }
+  bool curve_degenerated(int) const override { return false; }
+  Vec3 eval_curve(int c, double t) const override { return eval_face(1, pcurve(c, t)).p; }
+  Vec3 curve_tangent(int c, double t) const override {
+    const SurfaceD1 s = eval_face(1, pcurve(c, t));
+    const Vec2 d = pcurve(c, 1) - pcurve(c, 0);
+    return s.du * d.x() + s.dv * d.y();
+  }
+  bool curve_curvature(int, double, double& k) const override {
+    k = 0;
+    return true;
+  }
+  double curve_length(int c) const override { return (eval_curve(c, 1) - eval_curve(c, 0)).norm(); }
+  int curve_start_point(int c) const override { return c; }
+  int curve_end_point(int c) const override { return c % 4 + 1; }
+  Vec2 eval_pcurve(int c, int, int, double t) const override { return pcurve(c, t); }
+  Vec3 point_xyz(int p) const override { return eval_face(1, corner(p)).p; }
+
+ private:
+  static Vec2 corner(int p) {
+    const Vec2 c[4] = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+    return c[p - 1];
+  }
+  static Vec2 pcurve(int c, double t) { return corner(c) + t * (corner(c % 4 + 1) - corner(c)); }
+  double x(double u) const { return L_ * (0.05 * u + 0.95 * u * u * u); }
+  double dx(double u) const { return L_ * (0.05 + 2.85 * u * u); }
+  double y(double v) const { return W_ * (0.1 * v + 0.9 * v * v); }
+  double dy(double v) const { return W_ * (0.1 + 1.8 * v); }
+  double L_, W_;
+};
+
+}  // namespace
+
+TEST_CASE("a distorted parametrisation gives a mesh shaped in space, not in uv", "[mesher]") {
+  // |du| varies 58:1 and |dv| 19:1 across the face: equilateral triangles in
+  // uv would be slivers in space; the metric (and, where it is not enough, the
+  // ideal point placed in space) keeps them well shaped on the surface.
+  const DistortedRectangle rect(4.0, 1.0);
+  const UniformSize h(0.1);
+  const SurfaceMesh m = mesh_surface(rect, h);
+  const MeshQuality q = mesh_quality(m, rect, h);
+  INFO("triangles " << q.triangles << ", below 12 deg " << q.below_12 << ", below 24 deg " << q.below_24
+                    << ", conformity " << q.size_conformity << ", ideal points placed in space "
+                    << m.stats.fronts_3d);
+  REQUIRE(m.failures.empty());
+  CHECK(q.inverted == 0);
+  CHECK(q.zero_area == 0);
+  CHECK(q.nonmanifold_edges == 0);
+  CHECK(q.boundary_edges == static_cast<int>(std::lround(2 * (4.0 + 1.0) / 0.1)));
+  CHECK(q.area == Approx(4.0).epsilon(1e-9));
+  CHECK(q.below_12 == 0);
+  CHECK(q.below_24 <= 0.005 * q.triangles);
+  CHECK(q.size_conformity >= 0.95);
+}
