@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace sizemesh {
 namespace {
@@ -113,6 +114,16 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
     if ((i == 0 && a < 0) || (i > 0 && a > 0)) std::reverse(loops[i].begin(), loops[i].end());
   }
 
+  // Loops that touch at a vertex (a hole meeting the outer loop) share that
+  // node: one node per global id and uv position.
+  Vec2 lo = loops[0][0].uv, hi = lo;
+  for (const auto& loop : loops)
+    for (const Entry& e : loop) {
+      lo = lo.cwiseMin(e.uv);
+      hi = hi.cwiseMax(e.uv);
+    }
+  const double same_uv = 1e-7 * std::max((hi - lo).norm(), 1e-300);
+  std::unordered_map<int, std::vector<int>> nodes_of;  // global id -> local nodes
   FaceMesh fm;
   fm.face = face;
   for (const std::vector<Entry>& loop : loops) {
@@ -125,7 +136,14 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
       // mesh takes the shared curve node's xyz at assembly.
       SurfaceSample sa = fs.eval(a.uv);
       if (a.pole) sa.n = Vec3::Zero();  // undefined on a pole
-      ids.push_back(fm.add_node(a.uv, sa, a.global, a.pole));
+      int id = -1;
+      for (int k : nodes_of[a.global])
+        if ((fm.uv[k] - a.uv).norm() <= same_uv) id = k;
+      if (id < 0) {
+        id = fm.add_node(a.uv, sa, a.global, a.pole);
+        nodes_of[a.global].push_back(id);
+      }
+      ids.push_back(id);
       const Entry& b = loop[(i + 1) % n];
       if (!(a.pole && b.pole && a.global == b.global)) continue;
       // Pole segment: split it like the ring of the mesh next to it (one

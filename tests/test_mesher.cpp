@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -83,6 +84,14 @@ TopoDS_Shape plate_with_hole() {
   return BRepAlgoAPI_Cut(plate, hole).Shape();
 }
 
+// Two fused cylinders, the thinner one tangent to the thicker one's side: the
+// hole it cuts touches the thicker face's outer loop at one point.
+TopoDS_Shape tangent_cylinders() {
+  TopoDS_Shape a = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -2), gp_Dir(0, 0, 1)), 0.5, 4).Shape();
+  TopoDS_Shape b = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-2, 0.2, 0), gp_Dir(1, 0, 0)), 0.3, 4).Shape();
+  return BRepAlgoAPI_Fuse(a, b).Shape();
+}
+
 struct Solid {
   const char* name;
   TopoDS_Shape shape;
@@ -97,6 +106,7 @@ std::vector<Solid> solids() {
       {"torus", BRepPrimAPI_MakeTorus(2.0, 0.5).Shape(), 0.06},
       {"cone", BRepPrimAPI_MakeCone(1.0, 0.0, 2.0).Shape(), 0.08},
       {"plate with a hole", plate_with_hole(), 0.12},
+      {"tangent cylinders", tangent_cylinders(), 0.07},
   };
 }
 
