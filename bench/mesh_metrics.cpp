@@ -16,6 +16,7 @@
 
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
+#include "sizing/triangle_bvh.h"
 
 using namespace sizemesh;
 
@@ -115,70 +116,63 @@ double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({ang(b - a, c - a), ang(a - b, c - b), ang(a - c, b - c)});
 }
 
-// Nearest background vertex by a uniform grid, then Newton projection onto
-// each face that vertex lies on, from its uv there.
+// Candidate faces from the background triangles nearest to the point (within
+// the tessellation tolerance of the nearest), then Newton on each face from
+// the uv of the closest point on that triangle.
 class SurfaceDistance {
  public:
-  SurfaceDistance(const Model& model, const BackgroundMesh& bg) : model_(model), bg_(bg) {
-    Eigen::AlignedBox3d box;
-    for (const Vec3& p : bg.xyz) box.extend(p);
-    lo_ = box.min();
-    const double n = std::cbrt(std::max<double>(1, bg.num_vertices()));
-    cell_ = std::max(box.sizes().maxCoeff() / n, 1e-12);
-    for (int v = 0; v < bg.num_vertices(); ++v) grid_[key(cell_of(bg.xyz[v]))].push_back(v);
+  SurfaceDistance(const Model& model, const BackgroundMesh& bg, double slack)
+      : model_(model), bg_(bg), bvh_(bg.xyz, bg.tris), slack_(slack) {
+    local_.resize(bg.tris.size(), {-1, -1});
+    for (const FacePatch& patch : bg.patches)
+      for (size_t t = 0; t < patch.tris.size(); ++t)
+        if (patch.global_tri[t] >= 0) local_[patch.global_tri[t]] = {patch.face, static_cast<int>(t)};
   }
-  // Faces of every background vertex within 3x the nearest one's distance: a
-  // planar face has background vertices only on its rim, so the nearest vertex
-  // may well lie on another face.
   double operator()(const Vec3& p) const {
-    std::vector<int> near = nearby(p);
     double best = INFINITY;
-    std::vector<int> tried;
-    for (int v : near) {
-      best = std::min(best, (bg_.xyz[v] - p).norm());
-      for (int u = bg_.use_start[v]; u < bg_.use_start[v + 1]; ++u) {
-        const int f = bg_.use_face[u];
-        if (std::find(tried.begin(), tried.end(), f) != tried.end()) continue;
-        tried.push_back(f);
-        Vec2 uv = bg_.patches[f - 1].uv[bg_.use_local[u]];
-        if (model_.project_to_face(f, p, uv)) best = std::min(best, (model_.eval_face(f, uv).p - p).norm());
-      }
+    for (const auto& [t, d] : bvh_.nearest(p, slack_)) {
+      best = std::min(best, d);
+      const auto [f, lt] = local_[t];
+      if (f < 0) continue;
+      const FacePatch& patch = bg_.patches[f - 1];
+      const auto& tr = patch.tris[lt];
+      const Vec3 w = TriangleBVH::closest_barycentric(p, bg_.xyz[patch.vertex[tr[0]]], bg_.xyz[patch.vertex[tr[1]]],
+                                                      bg_.xyz[patch.vertex[tr[2]]]);
+      best = std::min(best, project(f, p, w[0] * patch.uv[tr[0]] + w[1] * patch.uv[tr[1]] + w[2] * patch.uv[tr[2]]));
     }
     return best;
   }
 
  private:
-  Eigen::Vector3i cell_of(const Vec3& p) const { return ((p - lo_) / cell_).array().floor().cast<int>(); }
-  static long key(const Eigen::Vector3i& c) { return (long(c.x()) * 73856093) ^ (long(c.y()) * 19349663) ^ (long(c.z()) * 83492791); }
-  std::vector<int> nearby(const Vec3& p) const {
-    const Eigen::Vector3i c = cell_of(p);
-    double best_d = INFINITY;
-    std::vector<std::pair<double, int>> found;
-    for (int r = 0; r < 1000; ++r) {
-      for (int i = -r; i <= r; ++i)
-        for (int j = -r; j <= r; ++j)
-          for (int k = -r; k <= r; ++k) {
-            if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != r) continue;
-            auto it = grid_.find(key(c + Eigen::Vector3i(i, j, k)));
-            if (it == grid_.end()) continue;
-            for (int v : it->second) {
-              const double d = (bg_.xyz[v] - p).norm();
-              found.emplace_back(d, v);
-              best_d = std::min(best_d, d);
-            }
-          }
-      if (3 * best_d < r * cell_) break;  // nothing in an outer ring is within 3x the nearest
+  // Distance from p to face f's surface: Newton from uv, kept inside the
+  // face's parameter box (outside it a B-spline is extrapolated or undefined)
+  // except along periodic directions.
+  double project(int f, const Vec3& p, Vec2 uv) const {
+    const UVBox box = model_.face_uv_bounds(f);
+    const bool periodic[2] = {model_.face_period_u(f) > 0, model_.face_period_v(f) > 0};
+    double d = INFINITY;
+    for (int it = 0; it < 20; ++it) {
+      const SurfaceD1 s = model_.eval_face(f, uv);
+      const Vec3 r = p - s.p;
+      d = std::min(d, r.norm());
+      Eigen::Matrix2d a;
+      a << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
+      if (!(std::abs(a.determinant()) > 1e-300)) break;
+      const Vec2 step = a.inverse() * Vec2(s.du.dot(r), s.dv.dot(r));
+      Vec2 next = uv + step;
+      for (int k = 0; k < 2; ++k)
+        if (!periodic[k]) next[k] = std::clamp(next[k], box.lo[k], box.hi[k]);
+      if ((next - uv).norm() <= 1e-14 * (1 + (box.hi - box.lo).norm())) break;
+      uv = next;
     }
-    std::vector<int> out;
-    for (const auto& [d, v] : found)
-      if (d <= 3 * best_d) out.push_back(v);
-    return out;
+    return d;
   }
+
   const Model& model_;
   const BackgroundMesh& bg_;
-  Vec3 lo_;
-  double cell_;
-  std::unordered_map<long, std::vector<int>> grid_;
+  TriangleBVH bvh_;
+  double slack_;
+  std::vector<std::pair<int, int>> local_;  // global triangle -> (face, local triangle)
 };
 
 }  // namespace
@@ -205,7 +199,7 @@ int main(int argc, char** argv) {
         if (std::abs(std::log(ratio / f)) < std::abs(std::log(ratio / best))) best = f;
       for (Vec3& p : m.xyz) p *= best;
     }
-    SurfaceDistance distance(model, bg);
+    SurfaceDistance distance(model, bg, 2 * fine.deflection_rel * model.info().diagonal());
     const double diag = model.info().diagonal();
     int below12 = 0, below24 = 0;
     double worst = 180, dmax = 0, dsum = 0, area = 0;

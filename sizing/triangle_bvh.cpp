@@ -114,3 +114,66 @@ TriangleBVH::Hit TriangleBVH::ray(const Vec3& origin, const Vec3& dir, double t_
 }
 
 }  // namespace sizemesh
+
+namespace sizemesh {
+
+// Ericson's closest point on a triangle, by Voronoi regions.
+Vec3 TriangleBVH::closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double t = d1 / (d1 - d3);
+    return {1 - t, t, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return {1 - t, 0, t};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - t, t};
+  }
+  const double den = 1.0 / (va + vb + vc);
+  const double v = vb * den, w = vc * den;
+  return {1 - v - w, v, w};
+}
+
+std::vector<std::pair<int, double>> TriangleBVH::nearest(const Vec3& p, double slack) const {
+  std::vector<std::pair<int, double>> found;
+  if (nodes_.empty()) return found;
+  double best = INFINITY;
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top) {
+    const Node& n = nodes_[stack[--top]];
+    if (n.box.exteriorDistance(p) > best + slack) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const auto& tr = tris_[order_[i]];
+        const Vec3 w = closest_barycentric(p, xyz_[tr[0]], xyz_[tr[1]], xyz_[tr[2]]);
+        const double d = (w[0] * xyz_[tr[0]] + w[1] * xyz_[tr[1]] + w[2] * xyz_[tr[2]] - p).norm();
+        if (d <= best + slack) found.emplace_back(order_[i], d);
+        best = std::min(best, d);
+      }
+    } else if (top + 2 <= 128) {
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
+  found.erase(std::remove_if(found.begin(), found.end(), [&](const auto& f) { return f.second > best + slack; }),
+              found.end());
+  return found;
+}
+
+}  // namespace sizemesh

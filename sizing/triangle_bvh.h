@@ -1,11 +1,13 @@
 // Bounding-volume hierarchy over 3D triangles: ray casting with a filter.
 //
 // Inputs:  xyz #V points, tris #T triangles (vertex ids)
-// Queries: closest hit of a ray within [0, t_max] among triangles the filter accepts.
+// Queries: closest hit of a ray within [0, t_max] among triangles the filter accepts;
+//          the triangles nearest to a point.
 #pragma once
 
 #include <array>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "geometry/types.h"
@@ -22,6 +24,11 @@ class TriangleBVH {
   };
   // dir must be a unit vector. `accept(tri)` filters candidate triangles.
   Hit ray(const Vec3& origin, const Vec3& dir, double t_max, const std::function<bool(int)>& accept) const;
+  // Triangles whose distance to p is at most the smallest such distance plus
+  // `slack`, with their distances (branch and bound on box distances).
+  std::vector<std::pair<int, double>> nearest(const Vec3& p, double slack) const;
+  // Closest point of triangle abc to p, as barycentric weights of a, b, c.
+  static Vec3 closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
  private:
   struct Node {
