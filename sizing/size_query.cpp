@@ -2,6 +2,7 @@
 // face's uv space after Shan et al. 2008, linear interpolation in the base
 // triangle, boundary clamping, and a 3D nearest-triangle query for at_xyz.
 #include "sizing/size_query.h"
+#include "sizing/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -188,38 +189,6 @@ double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2&
 
 [[noreturn]] void throw_bad_uv(int face) {
   throw Error("size query: a non-finite uv was asked on face " + std::to_string(face));
-}
-
-// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5),
-// as barycentric weights (wa, wb, wc).
-void closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double w[3]) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) { w[0] = 1; w[1] = w[2] = 0; return; }
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) { w[1] = 1; w[0] = w[2] = 0; return; }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    w[0] = 1 - v; w[1] = v; w[2] = 0; return;
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) { w[2] = 1; w[0] = w[1] = 0; return; }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double v = d2 / (d2 - d6);
-    w[0] = 1 - v; w[2] = v; w[1] = 0; return;
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double v = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    w[1] = 1 - v; w[2] = v; w[0] = 0; return;
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0)) { w[0] = 1; w[1] = w[2] = 0; return; }  // degenerate in xyz
-  w[1] = vb / denom; w[2] = vc / denom; w[0] = 1 - w[1] - w[2];
 }
 
 double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
@@ -512,6 +481,10 @@ const SizeQuery::Face& SizeQuery::face_data(int face) const {
 // Queries in uv (paper 4.2)
 
 SizeQuery::Hit SizeQuery::locate(int face, const Vec2& uv, int hint, QueryStats* stats) const {
+  if (surface_ && face >= 1 && face <= num_faces() && faces_[face - 1].tris.empty()) {
+    if (stats) ++stats->queries;
+    return {at_xyz(surface_(face, uv)), -1};  // no uv triangulation to walk: the nearest size in space
+  }
   const Face& f = face_data(face);
   if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) throw_bad_uv(face);
   // Periodic faces: bring the point into the patch's uv range (across the seam).
@@ -866,8 +839,7 @@ double SizeQuery::at_xyz(const Vec3& xyz) const {
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int t = b.order[i];
-        double w[3];
-        closest_on_triangle(xyz, b.xyz[t][0], b.xyz[t][1], b.xyz[t][2], w);
+        const Vec3 w = TriangleBVH::closest_barycentric(xyz, b.xyz[t][0], b.xyz[t][1], b.xyz[t][2]);
         const Vec3 q = w[0] * b.xyz[t][0] + w[1] * b.xyz[t][1] + w[2] * b.xyz[t][2];
         const double d2 = (q - xyz).squaredNorm();
         if (d2 < best) {

@@ -47,6 +47,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -94,6 +95,9 @@ class SizeQuery final : public SizeFunction {
   // Start from the nearer of the hint and the start grid's triangle (default),
   // or from the hint alone as in the paper. Set before querying (not thread-safe).
   void set_grid_with_hint(bool on) { grid_with_hint_ = on; }
+  // Surface point of (face, uv). When set, a face with no background triangles
+  // answers with at_xyz() of that point instead of throwing.
+  void set_surface(std::function<Vec3(int face, const Vec2& uv)> surface) { surface_ = std::move(surface); }
 
   int num_faces() const;
   int num_triangles(int face) const;
@@ -122,6 +126,7 @@ class SizeQuery final : public SizeFunction {
   std::unique_ptr<Bvh> bvh_;
   std::unique_ptr<StatSlot[]> slots_;
   bool grid_with_hint_ = true;
+  std::function<Vec3(int, const Vec2&)> surface_;
 };
 
 }  // namespace sizemesh

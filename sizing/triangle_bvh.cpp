@@ -143,8 +143,9 @@ Vec3 TriangleBVH::closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& 
     const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return {0, 1 - t, t};
   }
-  const double den = 1.0 / (va + vb + vc);
-  const double v = vb * den, w = vc * den;
+  const double denom = va + vb + vc;
+  if (!(denom > 0)) return {1, 0, 0};  // degenerate in xyz
+  const double v = vb / denom, w = vc / denom;
   return {1 - v - w, v, w};
 }
 

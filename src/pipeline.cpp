@@ -72,6 +72,7 @@ int run(const RunOptions& o) {
   SurfaceMesh mesh;
   if (!o.output.empty()) {
     SizeQuery query(bg, h.h, periods(model, true), periods(model, false));  // sizing/ (4.2)
+    query.set_surface([&model](int face, const Vec2& uv) { return model.eval_face(face, uv).p; });
     mesh = mesh_surface(model, query, o.meshing);                           // mesher/ (4.1)
     clock.lap("meshing");
     report.queries = query.stats();

@@ -2,6 +2,8 @@
 // like a brute-force scan on real models, interpolates exactly at background
 // vertices, clamps points just outside a face's domain to its boundary, works
 // across periodic seams, and terminates on degenerate and folded patches.
+#include <BRepPrimAPI_MakeBox.hxx>
+
 #include <catch2/catch.hpp>
 
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -454,6 +456,24 @@ TEST_CASE("the walk terminates on degenerate, folded and cyclic uv patches and o
   CHECK_THROWS_AS(query.at(0, Vec2(0, 0), hint), Error);
   CHECK_THROWS_AS(query.at(1, Vec2(NAN, 0), hint), Error);
   CHECK_THROWS_WITH(query.at(2, Vec2(0, 0), hint), Catch::Contains("face 2"));
+}
+
+TEST_CASE("given the surface, a face with no background triangles takes the size nearest in space", "[size_query]") {
+  Model model = model_from_shape(BRepPrimAPI_MakeBox(1.0, 2.0, 3.0).Shape());
+  BackgroundMesh bg = build_background_mesh(model);
+  bg.patches[1].tris.clear();  // face 2 as if its tessellation had failed
+  bg.patches[1].adj.clear();
+  bg.patches[1].global_tri.clear();
+  std::vector<double> h(bg.xyz.size());
+  for (size_t v = 0; v < h.size(); ++v) h[v] = 0.1 + 0.05 * bg.xyz[v].x() + 0.02 * bg.xyz[v].z();
+  SizeQuery query(bg, h);
+  int hint = -1;
+  CHECK_THROWS_WITH(query.at(2, Vec2(0.5, 0.5), hint), Catch::Contains("face 2"));
+  query.set_surface([&model](int face, const Vec2& uv) { return model.eval_face(face, uv).p; });
+  const UVBox box = model.face_uv_bounds(2);
+  const Vec2 mid = 0.5 * (box.lo + box.hi);
+  CHECK(query.at(2, mid, hint) == query.at_xyz(model.eval_face(2, mid).p));
+  CHECK_THROWS_AS(query.at(7, mid, hint), Error);  // no such face
 }
 
 TEST_CASE("a walk blocked by a hole goes around it, and points in the hole take the size on its boundary",
