@@ -1,66 +1,111 @@
 #include "mesher/quality.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 #include "mesher/geometry2d.h"
 
 namespace sizemesh {
 
+namespace {
+
+// Per-triangle measures, computed in parallel and reduced afterwards.
+struct TriangleMeasure {
+  double area = 0, node_distance = 0, inner_node_distance = 0;
+  bool zero_area = false, inverted = false;
+  std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
+};
+
+TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h, size_t t, int& hint) {
+  TriangleMeasure r;
+  const auto& tr = m.tris[t];
+  const Vec3 &a = m.xyz[tr[0]], &b = m.xyz[tr[1]], &c = m.xyz[tr[2]];
+  const Vec3 n = (b - a).cross(c - a);
+  const double l2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  r.area = 0.5 * n.norm();
+  r.zero_area = !(n.norm() > 1e-12 * l2);
+  // Against the surface normal at the uv centroid, oriented as in the shell.
+  const int f = m.tri_face[t];
+  const auto& uv = m.tri_uv[t];
+  const SurfaceD1 s = g.eval_face(f, (uv[0] + uv[1] + uv[2]) / 3.0);
+  Vec3 ns = s.du.cross(s.dv);
+  if (g.face_reversed(f)) ns = -ns;
+  r.inverted = ns.norm() > 0 && n.dot(ns) <= 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = (g.eval_face(f, uv[k]).p - m.xyz[tr[k]]).norm();
+    r.node_distance = std::max(r.node_distance, d);
+    if (m.node_dim[tr[k]] == 2) r.inner_node_distance = std::max(r.inner_node_distance, d);
+    // Size at the edge's midpoint, looked up in the face's uv space.
+    const int k1 = (k + 1) % 3;
+    const double len = (m.xyz[tr[k1]] - m.xyz[tr[k]]).norm();
+    r.edge_ratio[k] = len / h.at(f, 0.5 * (uv[k] + uv[k1]), hint);
+  }
+  return r;
+}
+
+}  // namespace
+
 MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h) {
   MeshQuality q;
-  q.triangles = static_cast<int>(m.tris.size());
+  const size_t nt = m.tris.size();
+  q.triangles = static_cast<int>(nt);
   q.nodes = static_cast<int>(m.xyz.size());
-  q.min_angle.resize(m.tris.size());
-  // Directed edge uses: an edge of a closed, consistently oriented mesh is used
-  // once each way.
-  std::unordered_map<uint64_t, int> directed;
-  directed.reserve(m.tris.size() * 3);
-  auto code = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
-  for (size_t t = 0; t < m.tris.size(); ++t) {
-    const auto& tr = m.tris[t];
-    const Vec3 &a = m.xyz[tr[0]], &b = m.xyz[tr[1]], &c = m.xyz[tr[2]];
-    const double ang = min_angle_deg(a, b, c);
-    q.min_angle[t] = ang;
+  q.min_angle.resize(nt);
+  std::vector<TriangleMeasure> per(nt);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 4096), [&](const tbb::blocked_range<size_t>& range) {
+    int hint = -1;
+    for (size_t t = range.begin(); t != range.end(); ++t) {
+      if (t > range.begin() && m.tri_face[t] != m.tri_face[t - 1]) hint = -1;  // hints are per face
+      const auto& tr = m.tris[t];
+      q.min_angle[t] = min_angle_deg(m.xyz[tr[0]], m.xyz[tr[1]], m.xyz[tr[2]]);
+      per[t] = measure(m, g, h, t, hint);
+    }
+  });
+  for (size_t t = 0; t < nt; ++t) {
+    const double ang = q.min_angle[t];
     q.histogram[std::min(9, static_cast<int>(ang / 6.0))]++;
     if (ang < 12) ++q.below_12;
     if (ang < 24) ++q.below_24;
     q.worst_angle = std::min(q.worst_angle, ang);
-    const Vec3 n = (b - a).cross(c - a);
-    const double l2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
-    q.area += 0.5 * n.norm();
-    if (!(n.norm() > 1e-12 * l2)) ++q.zero_area;
-    // Against the surface normal at the uv centroid, oriented as in the shell.
-    const int f = m.tri_face[t];
-    const Vec2 uvc = (m.tri_uv[t][0] + m.tri_uv[t][1] + m.tri_uv[t][2]) / 3.0;
-    const SurfaceD1 s = g.eval_face(f, uvc);
-    Vec3 ns = s.du.cross(s.dv);
-    if (g.face_reversed(f)) ns = -ns;
-    if (ns.norm() > 0 && n.dot(ns) <= 0) ++q.inverted;
-    for (int k = 0; k < 3; ++k) {
-      const double d = (g.eval_face(f, m.tri_uv[t][k]).p - m.xyz[tr[k]]).norm();
-      q.max_node_distance = std::max(q.max_node_distance, d);
-      if (m.node_dim[tr[k]] == 2) q.max_inner_node_distance = std::max(q.max_inner_node_distance, d);
-      directed[code(tr[k], tr[(k + 1) % 3])]++;
-    }
+    q.area += per[t].area;
+    q.zero_area += per[t].zero_area;
+    q.inverted += per[t].inverted;
+    q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
+    q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
+  // Edge uses, sorted by undirected edge: (min, max) << 1 | reversed, then the
+  // use (triangle, side) so each group is one edge with its directions.
+  std::vector<std::pair<uint64_t, uint32_t>> uses(3 * nt);
+  tbb::parallel_for(size_t(0), nt, [&](size_t t) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = m.tris[t][k], b = m.tris[t][(k + 1) % 3];
+      const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+      uses[3 * t + k] = {key << 1 | (a > b ? 1u : 0u), static_cast<uint32_t>(3 * t + k)};
+    }
+  });
+  tbb::parallel_sort(uses.begin(), uses.end());
   int edges = 0, conforming = 0;
   const double lo = 1.0 / std::sqrt(2.0), hi = std::sqrt(2.0);
-  for (const auto& [key, uses] : directed) {
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    auto it = directed.find(code(b, a));
-    const int back = it == directed.end() ? 0 : it->second;
-    if (uses == 2 && back == 0) ++q.orientation_conflicts;  // a manifold edge used twice one way
-    if (back > 0 && a > b) continue;  // count each undirected edge once
-    const int total = uses + back;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    int forward = 0, backward = 0;
+    while (j < uses.size() && (uses[j].first >> 1) == (uses[i].first >> 1)) {
+      (uses[j].first & 1 ? backward : forward)++;
+      ++j;
+    }
+    const int total = forward + backward;
     if (total == 1) ++q.boundary_edges;
     if (total > 2) ++q.nonmanifold_edges;
+    if (total == 2 && forward != 1) ++q.orientation_conflicts;  // a manifold edge used twice one way
     ++edges;
-    const double len = (m.xyz[b] - m.xyz[a]).norm();
-    const double r = len / h.at_xyz(0.5 * (m.xyz[a] + m.xyz[b]));
+    const uint32_t use = uses[i].second;
+    const double r = per[use / 3].edge_ratio[use % 3];
     if (r >= lo && r <= hi) ++conforming;
+    i = j;
   }
   q.size_conformity = edges > 0 ? double(conforming) / edges : 0;
   return q;
