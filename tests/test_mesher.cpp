@@ -22,6 +22,7 @@
 #include "mesher/discretise_curves.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
+#include "tests/test_models.h"
 
 using namespace sizemesh;
 
@@ -228,17 +229,9 @@ TEST_CASE("the orientation follows the shell: outward normals on a closed solid"
 }
 
 TEST_CASE("shared models mesh with no failed face, watertight when closed", "[mesher][models]") {
-  struct Case {
-    const char* file;
-    bool closed;
-  };
-  const Case cases[] = {{"onera_m6_wing.stp", true},         {"cone70_capsule_sting.step", true},
-                        {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
-                        {"cylinder_head_fins.stp", true},    {"steering_knuckle.stp", true},
-                        {"d150_fuselage.igs", true},         {"f16_openvsp.stp", false}};
-  for (const Case& c : cases) {
+  for (const auto& c : test::shared_models()) {
     SECTION(c.file) {
-      const Model model = load_model(std::string(SIZEMESH_MODELS_DIR) + "/" + c.file);
+      const Model model = load_model(test::model_path(c.file));
       const double diag = model.info().diagonal();
       const UniformSize h(diag / 40);
       MeshOptions one, two;
@@ -272,7 +265,7 @@ TEST_CASE("shared models at a resolving size: CAD area, conforming sizes, good a
                         {"d150_fuselage.igs", true},       {"f16_openvsp.stp", false}};
   for (const Case& c : cases) {
     SECTION(c.file) {
-      const Model model = load_model(std::string(SIZEMESH_MODELS_DIR) + "/" + c.file);
+      const Model model = load_model(test::model_path(c.file));
       const UniformSize h(model.info().diagonal() / 200);
       const SurfaceMesh m = mesh_surface(model, h);
       const MeshQuality q = mesh_quality(m, model, h);
@@ -381,6 +374,25 @@ TEST_CASE("a face the kernel cannot evaluate is reported and the rest is kept", 
   const MeshQuality q = mesh_quality(m, faulty, h);
   CHECK(q.nonmanifold_edges == 0);
   CHECK(q.boundary_edges == 4 * 5);  // the face's four sides, 5 segments each
+}
+
+TEST_CASE("a failed face leaves every other face meshed exactly as before, and says why", "[mesher]") {
+  for (const TopoDS_Shape& shape : {BRepPrimAPI_MakeBox(2.0, 3.0, 4.0).Shape(), BRepPrimAPI_MakeCylinder(1.0, 2.0).Shape()}) {
+    const Model model = model_from_shape(shape);
+    const UniformSize h(0.3);
+    const SurfaceMesh whole = mesh_surface(model, h);
+    REQUIRE(whole.failures.empty());
+    const SurfaceMesh partial = mesh_surface(FaultyFace(model, 2), h);
+    REQUIRE(partial.failures.size() == 1);
+    CHECK(partial.failures[0].face == 2);
+    CHECK(partial.failures[0].reason.find("surface evaluation failed") != std::string::npos);
+    std::vector<std::array<Vec3, 3>> a, b;
+    for (size_t t = 0; t < whole.tris.size(); ++t)
+      if (whole.tri_face[t] != 2) a.push_back({whole.xyz[whole.tris[t][0]], whole.xyz[whole.tris[t][1]], whole.xyz[whole.tris[t][2]]});
+    for (size_t t = 0; t < partial.tris.size(); ++t)
+      b.push_back({partial.xyz[partial.tris[t][0]], partial.xyz[partial.tris[t][1]], partial.xyz[partial.tris[t][2]]});
+    CHECK(a == b);
+  }
 }
 
 TEST_CASE("a size map with a hole still gives a valid closed mesh", "[mesher]") {

@@ -15,21 +15,14 @@
 #include "sizing/initial_sizes.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
+#include "tests/test_models.h"
 
 using namespace sizemesh;
 
 TEST_CASE("shared models under the automatic size map meet every mesh requirement", "[mesher][size_map]") {
-  struct Case {
-    const char* file;
-    bool closed;
-  };
-  const Case cases[] = {{"onera_m6_wing.stp", true},         {"cone70_capsule_sting.step", true},
-                        {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
-                        {"cylinder_head_fins.stp", true},    {"steering_knuckle.stp", true},
-                        {"d150_fuselage.igs", true},         {"f16_openvsp.stp", false}};
-  for (const Case& c : cases) {
+  for (const auto& c : test::shared_models()) {
     SECTION(c.file) {
-      const Model model = load_model(std::string(SIZEMESH_MODELS_DIR) + "/" + c.file);
+      const Model model = load_model(test::model_path(c.file));
       const double diag = model.info().diagonal();
       const BackgroundMesh bg = build_background_mesh(model);
       SizingParams params;
