@@ -28,7 +28,10 @@ GMSH_SCRIPT = r"""
 import sys, time, gmsh
 path, out, unit, hmin, hmax, npts = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6])
 gmsh.initialize(); gmsh.option.setNumber("General.Terminal", 0); gmsh.option.setNumber("General.NumThreads", 1)
-if unit: gmsh.option.setString("Geometry.OCCTargetUnit", unit)
+try:
+    if unit: gmsh.option.setString("Geometry.OCCTargetUnit", unit)
+except Exception:
+    pass  # IGES: Gmsh keeps its own unit; mesh_metrics scales the mesh back
 gmsh.model.occ.importShapes(path); gmsh.model.occ.synchronize()
 gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", npts)
 gmsh.option.setNumber("Mesh.MeshSizeMin", hmin); gmsh.option.setNumber("Mesh.MeshSizeMax", hmax)
