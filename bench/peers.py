@@ -28,10 +28,7 @@ GMSH_SCRIPT = r"""
 import sys, time, gmsh
 path, out, unit, hmin, hmax, npts = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6])
 gmsh.initialize(); gmsh.option.setNumber("General.Terminal", 0); gmsh.option.setNumber("General.NumThreads", 1)
-try:
-    if unit: gmsh.option.setString("Geometry.OCCTargetUnit", unit)
-except Exception:
-    pass  # IGES: Gmsh keeps its own unit; mesh_metrics scales the mesh back
+if unit: gmsh.option.setString("Geometry.OCCTargetUnit", unit)
 gmsh.model.occ.importShapes(path); gmsh.model.occ.synchronize()
 gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", npts)
 gmsh.option.setNumber("Mesh.MeshSizeMin", hmin); gmsh.option.setNumber("Mesh.MeshSizeMax", hmax)
@@ -109,7 +106,9 @@ def main():
                     cmd = [os.path.join(a.build, "sizemesh"), path, "-o", out, "-q", "--threads", "1", "--phi-c", str(phi),
                            "--h-min", repr(hmin), "--h-max", repr(hmax)]
                 elif tool == "gmsh":
-                    cmd = ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, GMSH_UNITS.get(unit, ""), repr(hmin), repr(hmax),
+                    iges = name.lower().endswith((".igs", ".iges"))  # Gmsh takes no target unit for IGES
+                    cmd = ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, "" if iges else GMSH_UNITS.get(unit, ""),
+                           repr(hmin), repr(hmax),
                            str(round(360 / phi))]
                 else:
                     scale = UNIT_MM.get(unit, 1.0)
