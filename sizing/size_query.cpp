@@ -213,8 +213,8 @@ namespace {
 void build_start_grid(SizeQuery::Face& f) {
   const int nt = static_cast<int>(f.tris.size());
   const Vec2 span = (f.hi - f.lo).cwiseMax(Vec2::Constant(1e-300));
-  // About two cells per triangle, cells shaped like the patch's uv box.
-  const double cells = std::max(1.0, 2.0 * nt);
+  // About four cells per triangle, cells shaped like the patch's uv box.
+  const double cells = std::max(1.0, 4.0 * nt);
   const double ratio = span.x() / span.y();
   f.nx = static_cast<int>(std::clamp(std::round(std::sqrt(cells * ratio)), 1.0, 4096.0));
   f.ny = static_cast<int>(std::clamp(std::round(cells / f.nx), 1.0, 4096.0));
@@ -683,6 +683,7 @@ SizeQuery::Hit SizeQuery::go_around(const Face& f, const Vec2& p, int t0, QueryS
   const Vec2 S = (T0.uv[0] + T0.uv[1] + T0.uv[2]) / 3;
   auto side = [&](const Vec2& v) { return orient3(S, p, v); };  // > 0: left of m
   const int budget = 4 * (static_cast<int>(f.tris.size()) + static_cast<int>(f.bedges.size())) + 64;
+  const double progress = 1e-12 * (f.hi - f.lo).norm();
   int visited = 0, t = t0, entry = -1;
   double dH = std::numeric_limits<double>::infinity();
   auto give_up = [&]() {
@@ -746,7 +747,9 @@ SizeQuery::Hit SizeQuery::go_around(const Face& f, const Vec2& p, int t0, QueryS
         const double a = side(P), b = side(Q);
         if ((a <= 0 && b >= 0) || (a >= 0 && b <= 0)) {
           const Vec2 X = a != b ? Vec2(P + a / (a - b) * (Q - P)) : P;
-          if ((X - S).dot(p - S) >= 0 && (X - p).norm() < dH) {
+          // Leave only with real progress toward the point: a point lying on a
+          // boundary edge up to round-off would otherwise re-enter forever.
+          if ((X - S).dot(p - S) >= 0 && (X - p).norm() < dH - progress) {
             t = be[e].t;
             entry = be[e].k;
             left = true;
