@@ -58,10 +58,10 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
       CHECK(m["size_conformity"].get<double>() >= 0.90);
       const double cad = j["model"]["cad_area"], area = m["area"];
       CHECK(std::abs(area - cad) <= 0.005 * cad);
-      // The walk stays local (the target of 3 per query is tracked by the benchmarks);
-      // brute-force fallbacks stay rare.
-      CHECK(j["size_query"]["mean_triangles_visited"].get<double>() <= 5.0);
-      CHECK(j["size_query"]["fallbacks"].get<double>() <= 1e-5 * j["size_query"]["queries"].get<double>());
+      // The walk visits at most 3 background triangles per query on average and
+      // never falls back to a brute-force scan (the counts are deterministic).
+      CHECK(j["size_query"]["mean_triangles_visited"].get<double>() <= 3.0);
+      CHECK(j["size_query"]["fallbacks"] == 0);
       CHECK(fs::file_size(out) > 0);
       fs::remove(out);
     }
