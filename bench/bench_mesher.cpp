@@ -90,12 +90,7 @@ int main(int argc, char** argv) {
       const BackgroundMesh bg = build_background_mesh(model);
       SizeMap map = initial_sizes(model, bg, SizingParams{}, diag);
       smooth(bg, map);
-      std::vector<double> pu, pv;
-      for (int f = 1; f <= model.num_faces(); ++f) {
-        pu.push_back(model.face_period_u(f));
-        pv.push_back(model.face_period_v(f));
-      }
-      const SizeQuery query(bg, map.h, pu, pv);
+      const SizeQuery query = size_query_for(model, bg, map.h);
       std::printf("    size map built in %.3f s\n",
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       run(name, "size map", model, query);

@@ -167,12 +167,7 @@ int main(int argc, char** argv) {
     try {
       const Model model = load_model(path);
       const BackgroundMesh bg = build_background_mesh(model);
-      std::vector<double> pu, pv;
-      for (int f = 1; f <= model.num_faces(); ++f) {
-        pu.push_back(model.face_period_u(f));
-        pv.push_back(model.face_period_v(f));
-      }
-      SizeQuery query(bg, local_sizes(bg), pu, pv);
+      SizeQuery query = size_query_for(model, bg, local_sizes(bg));
       std::mt19937 rng(2024);
       const std::vector<Query> stream = coherent_stream(model, bg, query, n, rng);
       auto hinted = [&](const Query& q, int& hint) {

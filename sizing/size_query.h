@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "geometry/background_mesh.h"
+#include "geometry/geometry.h"
 #include "sizing/size_function.h"
 
 namespace sizemesh {
@@ -128,5 +129,9 @@ class SizeQuery final : public SizeFunction {
   bool grid_with_hint_ = true;
   std::function<Vec3(int, const Vec2&)> surface_;
 };
+
+// The size query over a model's faces: periods from g, and g's surface for
+// faces with no background triangles. g must outlive the query.
+SizeQuery size_query_for(const Geometry& g, const BackgroundMesh& bg, std::vector<double> h);
 
 }  // namespace sizemesh

@@ -32,12 +32,6 @@ class Stopwatch {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
-std::vector<double> periods(const Model& model, bool u) {
-  std::vector<double> p(model.num_faces());
-  for (int f = 1; f <= model.num_faces(); ++f) p[f - 1] = u ? model.face_period_u(f) : model.face_period_v(f);
-  return p;
-}
-
 }  // namespace
 
 int run(const RunOptions& o) {
@@ -71,8 +65,7 @@ int run(const RunOptions& o) {
 
   SurfaceMesh mesh;
   if (!o.output.empty()) {
-    SizeQuery query(bg, h.h, periods(model, true), periods(model, false));  // sizing/ (4.2)
-    query.set_surface([&model](int face, const Vec2& uv) { return model.eval_face(face, uv).p; });
+    const SizeQuery query = size_query_for(model, bg, h.h);  // sizing/ (4.2)
     mesh = mesh_surface(model, query, o.meshing);                           // mesher/ (4.1)
     clock.lap("meshing");
     report.queries = query.stats();

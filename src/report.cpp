@@ -13,6 +13,7 @@ nlohmann::json report_json(const RunReport& r) {
   for (int f = 1; f <= r.model->num_faces(); ++f) cad_area += r.model->face_area(f);
   j["model"] = {{"cad_area", cad_area},
                 {"closed", r.model->closed()},
+                {"diagonal", info.diagonal()},
                 {"file", info.path},       {"format", info.format},   {"unit", info.unit},
                 {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
                 {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing}};
@@ -50,6 +51,8 @@ nlohmann::json report_json(const RunReport& r) {
                  {"inverted_triangles", q.inverted},
                  {"zero_area_triangles", q.zero_area},
                  {"area", q.area},
+                 {"max_inner_node_distance", q.max_inner_node_distance},
+                 {"max_node_distance", q.max_node_distance},
                  {"failed_faces", failures}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},

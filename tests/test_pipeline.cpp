@@ -47,6 +47,8 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
       CHECK(m["failed_faces"].empty());
       CHECK(m["inverted_triangles"] == 0);
       CHECK(m["zero_area_triangles"] == 0);
+      // Nodes inside faces lie on their surface.
+      CHECK(m["max_inner_node_distance"].get<double>() <= 1e-9 * j["model"]["diagonal"].get<double>());
       if (sm.closed) {
         CHECK(j["model"]["closed"] == true);
         CHECK(m["boundary_edges"] == 0);
