@@ -203,6 +203,7 @@ int main(int argc, char** argv) {
     const double diag = model.info().diagonal();
     int below12 = 0, below24 = 0;
     double worst = 180, dmax = 0, dsum = 0, area = 0;
+    Vec3 at_max = Vec3::Zero();
     for (const auto& t : m.tris) {
       const Vec3 &a = m.xyz[t[0]], &b = m.xyz[t[1]], &c = m.xyz[t[2]];
       const double ang = min_angle_deg(a, b, c);
@@ -211,14 +212,18 @@ int main(int argc, char** argv) {
       worst = std::min(worst, ang);
       area += 0.5 * (b - a).cross(c - a).norm();
       const double d = distance((a + b + c) / 3.0) / diag;
-      dmax = std::max(dmax, d);
+      if (d > dmax) {
+        dmax = d;
+        at_max = (a + b + c) / 3.0;
+      }
       dsum += d;
     }
     const double n = std::max<size_t>(1, m.tris.size());
     std::printf("{\"triangles\": %zu, \"nodes\": %zu, \"below_12\": %d, \"below_24\": %d, \"share_below_12\": %.6g, "
                 "\"share_below_24\": %.6g, \"worst_angle\": %.4g, \"max_centroid_distance_rel\": %.4g, "
-                "\"mean_centroid_distance_rel\": %.4g, \"area\": %.10g}\n",
-                m.tris.size(), m.xyz.size(), below12, below24, below12 / n, below24 / n, worst, dmax, dsum / n, area);
+                "\"mean_centroid_distance_rel\": %.4g, \"max_centroid_at\": [%.6g, %.6g, %.6g], \"area\": %.10g}\n",
+                m.tris.size(), m.xyz.size(), below12, below24, below12 / n, below24 / n, worst, dmax, dsum / n, at_max.x(), at_max.y(),
+                at_max.z(), area);
   } catch (const std::exception& e) {
     std::cerr << "mesh_metrics: error: " << e.what() << "\n";
     return 1;

@@ -34,7 +34,8 @@ struct Chain {
   std::vector<double> t;
 };
 
-// Fills patch.adj from patch.tris: neighbour across the edge opposite each corner.
+}  // namespace
+
 void build_adjacency(FacePatch& patch) {
   std::unordered_map<uint64_t, std::pair<int, int>> open;
   open.reserve(patch.tris.size() * 2);
@@ -55,6 +56,8 @@ void build_adjacency(FacePatch& patch) {
   }
 }
 
+namespace {
+
 class Builder {
  public:
   Builder(const Model& model, BackgroundMesh& bg) : model_(model), m_(model.impl()), bg_(bg) {}
@@ -65,8 +68,12 @@ class Builder {
     chains_.resize(m_.edges.Extent());
     bg_.patches.resize(m_.faces.Extent());
     for (int f = 1; f <= m_.faces.Extent(); ++f) build_patch(f);
-    build_edges();
-    build_uses();
+    std::vector<CurveEdge> curve_edges;
+    for (int c = 0; c < static_cast<int>(chains_.size()); ++c)
+      for (size_t i = 1; i < chains_[c].vertex.size(); ++i)
+        if (chains_[c].vertex[i - 1] != chains_[c].vertex[i])
+          curve_edges.push_back({{chains_[c].vertex[i - 1], chains_[c].vertex[i]}, c + 1});
+    assemble_background(bg_, model_, curve_edges);
   }
 
  private:
@@ -157,7 +164,6 @@ class Builder {
       gp_Pnt2d uv = tri->UVNode(i + 1);
       patch.uv[i] = Vec2(uv.X(), uv.Y());
     }
-    const bool reversed = m_.face_data[f - 1].reversed;
     for (int t = 1; t <= tri->NbTriangles(); ++t) {
       int a, b, c;
       tri->Triangle(t).Get(a, b, c);
@@ -165,58 +171,8 @@ class Builder {
       const Vec2 e1 = patch.uv[lt[1]] - patch.uv[lt[0]], e2 = patch.uv[lt[2]] - patch.uv[lt[0]];
       if (e1.x() * e2.y() - e1.y() * e2.x() < 0) std::swap(lt[1], lt[2]);  // counter-clockwise in uv
       patch.tris.push_back(lt);
-      std::array<int, 3> g = {local_to_global[lt[0]], local_to_global[lt[1]], local_to_global[lt[2]]};
-      if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) {
-        patch.global_tri.push_back(-1);  // collapsed onto a pole
-        continue;
-      }
-      if (reversed) std::swap(g[1], g[2]);
-      patch.global_tri.push_back(bg_.num_triangles());
-      bg_.tris.push_back(g);
-      bg_.tri_face.push_back(f);
     }
     build_adjacency(patch);
-  }
-
-  void build_edges() {
-    std::unordered_map<uint64_t, int> index;
-    index.reserve(bg_.tris.size() * 2);
-    auto add = [&](int a, int b, int curve) {
-      auto [it, fresh] = index.emplace(edge_key(a, b), static_cast<int>(bg_.edges.size()));
-      if (fresh) {
-        bg_.edges.push_back({std::min(a, b), std::max(a, b)});
-        bg_.edge_curve.push_back(curve);
-      } else if (curve) {
-        bg_.edge_curve[it->second] = curve;
-      }
-    };
-    for (int c = 0; c < static_cast<int>(chains_.size()); ++c)
-      for (size_t i = 1; i < chains_[c].vertex.size(); ++i)
-        if (chains_[c].vertex[i - 1] != chains_[c].vertex[i]) add(chains_[c].vertex[i - 1], chains_[c].vertex[i], c + 1);
-    bg_.tri_edges.resize(bg_.tris.size());
-    for (size_t t = 0; t < bg_.tris.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int a = bg_.tris[t][k], b = bg_.tris[t][(k + 1) % 3];
-        add(a, b, 0);
-        bg_.tri_edges[t][k] = index.at(edge_key(a, b));
-      }
-  }
-
-  void build_uses() {
-    const int nv = bg_.num_vertices();
-    bg_.use_start.assign(nv + 1, 0);
-    for (const auto& p : bg_.patches)
-      for (int g : p.vertex) ++bg_.use_start[g + 1];
-    for (int v = 0; v < nv; ++v) bg_.use_start[v + 1] += bg_.use_start[v];
-    bg_.use_face.resize(bg_.use_start[nv]);
-    bg_.use_local.resize(bg_.use_start[nv]);
-    std::vector<int> fill(bg_.use_start.begin(), bg_.use_start.end() - 1);
-    for (const auto& p : bg_.patches)
-      for (int l = 0; l < static_cast<int>(p.vertex.size()); ++l) {
-        const int slot = fill[p.vertex[l]]++;
-        bg_.use_face[slot] = p.face;
-        bg_.use_local[slot] = l;
-      }
   }
 
   const Model& model_;
@@ -227,6 +183,60 @@ class Builder {
 };
 
 }  // namespace
+
+void assemble_background(BackgroundMesh& bg, const Geometry& g, const std::vector<CurveEdge>& curve_edges) {
+  // Global triangles, patch by patch, oriented as each face lies in its shell.
+  bg.tris.clear();
+  bg.tri_face.clear();
+  for (FacePatch& patch : bg.patches) {
+    if (patch.face == 0) continue;
+    const bool reversed = g.face_reversed(patch.face);
+    patch.global_tri.assign(patch.tris.size(), -1);
+    for (size_t t = 0; t < patch.tris.size(); ++t) {
+      std::array<int, 3> v;
+      for (int k = 0; k < 3; ++k) v[k] = patch.vertex[patch.tris[t][k]];
+      if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // collapsed onto a pole
+      if (reversed) std::swap(v[1], v[2]);
+      patch.global_tri[t] = bg.num_triangles();
+      bg.tris.push_back(v);
+      bg.tri_face.push_back(patch.face);
+    }
+  }
+  // Edges: the curves' first, then every triangle side.
+  bg.edges.clear();
+  bg.edge_curve.clear();
+  std::unordered_map<uint64_t, int> index;
+  index.reserve(bg.tris.size() * 2);
+  auto add = [&](int a, int b, int curve) {
+    auto [it, fresh] = index.emplace(edge_key(a, b), static_cast<int>(bg.edges.size()));
+    if (fresh) {
+      bg.edges.push_back({std::min(a, b), std::max(a, b)});
+      bg.edge_curve.push_back(curve);
+    } else if (curve) {
+      bg.edge_curve[it->second] = curve;
+    }
+    return it->second;
+  };
+  for (const CurveEdge& e : curve_edges) add(e.v[0], e.v[1], e.curve);
+  bg.tri_edges.resize(bg.tris.size());
+  for (size_t t = 0; t < bg.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) bg.tri_edges[t][k] = add(bg.tris[t][k], bg.tris[t][(k + 1) % 3], 0);
+  // Vertex uses (CSR).
+  const int nv = bg.num_vertices();
+  bg.use_start.assign(nv + 1, 0);
+  for (const auto& p : bg.patches)
+    for (int v : p.vertex) ++bg.use_start[v + 1];
+  for (int v = 0; v < nv; ++v) bg.use_start[v + 1] += bg.use_start[v];
+  bg.use_face.resize(bg.use_start[nv]);
+  bg.use_local.resize(bg.use_start[nv]);
+  std::vector<int> fill(bg.use_start.begin(), bg.use_start.end() - 1);
+  for (const auto& p : bg.patches)
+    for (int l = 0; l < static_cast<int>(p.vertex.size()); ++l) {
+      const int slot = fill[p.vertex[l]]++;
+      bg.use_face[slot] = p.face;
+      bg.use_local[slot] = l;
+    }
+}
 
 BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions& options) {
   if (!(options.deflection_rel > 0) || !(options.angle_deg > 0))

@@ -14,6 +14,7 @@
 
 namespace sizemesh {
 
+class Geometry;
 class Model;
 
 // One face's triangulation in its own parameter space.
@@ -61,5 +62,26 @@ struct BackgroundOptions {
 
 // Tessellates the model with BRepMesh and builds the classified mesh.
 BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions& options = {});
+
+// Splits edges at their midpoints: an edge on a curve at the middle of its
+// curve parameter range (one new vertex shared by every face using the curve,
+// with its uv from each face's parameter curve), an edge inside a face at the
+// middle of its uv. Every triangle touching a split edge is re-triangulated
+// (one split side: 2 triangles, two: 3, three: 4), all classification is kept,
+// and the global triangles, edges and uses are rebuilt. Edges of triangles
+// collapsed onto a pole are left alone. Returns the number of edges split.
+int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& edges);
+
+// --- building blocks shared by the builders above ---
+// Fills patch.adj from patch.tris: neighbour across the edge opposite each corner.
+void build_adjacency(FacePatch& patch);
+// One edge of a curve's chain of vertices.
+struct CurveEdge {
+  std::array<int, 2> v;
+  int curve;
+};
+// Rebuilds tris, tri_face, global_tri, edges (the curves' first), tri_edges and
+// the vertex uses from the patches and the curves' edges.
+void assemble_background(BackgroundMesh& bg, const Geometry& g, const std::vector<CurveEdge>& curve_edges);
 
 }  // namespace sizemesh

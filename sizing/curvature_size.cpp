@@ -11,6 +11,12 @@ double chord_size(double k, double phi_deg) {
   return 2.0 / k * std::sin(0.5 * phi_deg * M_PI / 180.0);  // h_c = 2 r sin(phi_c/2)
 }
 
+double deviation_size(double k, double delta) {
+  if (!(k > 0) || !std::isfinite(k) || !(delta > 0)) return kNoLimit;
+  const double r = 1.0 / k;
+  return delta >= r ? 2 * r : 2 * std::sqrt(2 * r * delta - delta * delta);  // chord of height delta
+}
+
 namespace {
 double local(const std::map<int, double>& m, int id, double fallback) {
   auto it = m.find(id);
@@ -29,6 +35,18 @@ bool face_curvature(const Geometry& g, int face, const Vec2& uv, double& k) {
 
 }  // namespace
 
+double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
+  double k;
+  if (!face_curvature(g, face, uv, k)) return kNoLimit;
+  return std::min(chord_size(k, local(p.face_phi_c_deg, face, p.phi_c_deg)), deviation_size(k, p.deviation));
+}
+
+double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p) {
+  double k;
+  if (!g.curve_curvature(curve, t, k)) return kNoLimit;
+  return std::min(chord_size(k, local(p.curve_phi_c_deg, curve, p.phi_c_deg)), deviation_size(k, p.deviation));
+}
+
 std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   const int nv = bg.num_vertices();
   std::vector<double> h(nv, kNoLimit);
@@ -37,17 +55,12 @@ std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg,
     double best = kNoLimit;
     for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
       const int f = bg.use_face[u];
-      double k;
-      if (face_curvature(g, f, bg.patches[f - 1].uv[bg.use_local[u]], k))
-        best = std::min(best, chord_size(k, local(p.face_phi_c_deg, f, p.phi_c_deg)));
+      best = std::min(best, face_curvature_size(g, f, bg.patches[f - 1].uv[bg.use_local[u]], p));
     }
     h[v] = best;
   });
   // Curves: the curve's own curvature at its vertices and at its end points.
-  auto curve_at = [&](int c, double t, int v) {
-    double k;
-    if (g.curve_curvature(c, t, k)) h[v] = std::min(h[v], chord_size(k, local(p.curve_phi_c_deg, c, p.phi_c_deg)));
-  };
+  auto curve_at = [&](int c, double t, int v) { h[v] = std::min(h[v], curve_curvature_size(g, c, t, p)); };
   for (int v = 0; v < nv; ++v)
     if (bg.dim[v] == 1) curve_at(bg.entity[v], bg.curve_t[v], v);
   for (int c = 1; c <= g.num_curves(); ++c) {

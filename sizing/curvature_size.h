@@ -2,6 +2,8 @@
 // with r = 1 / k, k the largest absolute principal curvature over every face
 // the vertex lies on (at its uv there), and for vertices on curves also the
 // curve's own curvature. Local phi_c per face and per curve apply where set.
+// Beyond the paper, an optional deviation bound delta (p.deviation > 0) caps it
+// by the chord whose height off the arc is delta: 2 sqrt(2 r delta - delta^2).
 //
 // Inputs:  g geometry, bg background mesh, p parameters (phi_c, local phi_c)
 // Output:  #V sizes, kNoLimit where the surface is flat or the curvature is
@@ -21,5 +23,12 @@ std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg,
 
 // 2 r sin(phi/2) for curvature k (1/length) and phi in degrees; kNoLimit for k <= 0.
 double chord_size(double k, double phi_deg);
+// Chord of an arc of curvature k whose height is delta: 2 sqrt(2 r delta - delta^2)
+// (2 r when delta >= r); kNoLimit for k <= 0 or delta <= 0.
+double deviation_size(double k, double delta);
+
+// The curvature size at one point of a face, and of a curve (kNoLimit where flat or undefined).
+double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p);
+double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p);
 
 }  // namespace sizemesh

@@ -85,6 +85,8 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   if (!(h_min > 0) || !std::isfinite(h_min)) throw Error("h_min must be positive, got " + num(h_min));
   if (!(h_max > 0) || !std::isfinite(h_max)) throw Error("h_max must be positive, got " + num(h_max));
   if (h_min > h_max) throw Error("h_min (" + num(h_min) + ") is larger than h_max (" + num(h_max) + ")");
+  if (!(p.deviation >= 0) || !std::isfinite(p.deviation))
+    throw Error("deviation must be zero (none) or positive, got " + num(p.deviation));
   for (const auto& [id, v] : p.curve_phi_c_deg) check_phi(v, "curve " + std::to_string(id) + ": ");
   for (const auto& [id, v] : p.face_phi_c_deg) check_phi(v, "face " + std::to_string(id) + ": ");
   for (const auto& [id, v] : p.face_mu_d) check_mu(v, "face " + std::to_string(id) + ": ");
@@ -112,7 +114,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   static const std::set<std::string> known = {"phi_c",      "mu_d",      "beta",      "h_min",   "h_max",
-                                              "local_proximity", "curve_phi_c", "face_phi_c", "face_mu_d",
+                                              "deviation", "local_proximity", "refine_background", "curve_phi_c", "face_phi_c", "face_mu_d",
                                               "face_beta",  "point_size", "curve_size", "face_size"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -121,10 +123,12 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("beta")) p.beta = number(j["beta"], "beta");
   if (j.contains("h_min")) p.h_min = number(j["h_min"], "h_min");
   if (j.contains("h_max")) p.h_max = number(j["h_max"], "h_max");
-  if (j.contains("local_proximity")) {
-    if (!j["local_proximity"].is_boolean()) throw Error("config: local_proximity must be true or false");
-    p.local_proximity = j["local_proximity"].get<bool>();
-  }
+  if (j.contains("deviation")) p.deviation = number(j["deviation"], "deviation");
+  for (auto [key, flag] : {std::pair{"local_proximity", &p.local_proximity}, {"refine_background", &p.refine_background}})
+    if (j.contains(key)) {
+      if (!j[key].is_boolean()) throw Error(std::string("config: ") + key + " must be true or false");
+      *flag = j[key].get<bool>();
+    }
   if (j.contains("curve_phi_c")) read_map(j["curve_phi_c"], "curve_phi_c", p.curve_phi_c_deg, number);
   if (j.contains("face_phi_c")) read_map(j["face_phi_c"], "face_phi_c", p.face_phi_c_deg, number);
   if (j.contains("face_mu_d")) read_map(j["face_mu_d"], "face_mu_d", p.face_mu_d, number);

@@ -22,7 +22,9 @@ struct SizingParams {
   double h_max = 0;         // 0: h_max_rel * bounding-box diagonal
   double h_min_rel = 1e-3;
   double h_max_rel = 0.05;
+  double deviation = 0;     // curvature: largest chord height of an element edge (model units); 0: none
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
+  bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;
 

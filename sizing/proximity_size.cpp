@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "sizing/size_map.h"
 #include "sizing/triangle_bvh.h"
@@ -17,16 +18,107 @@ double face_mu(const SizingParams& p, int face) {
 }
 }  // namespace
 
-// h_d1 = (2 A / l) / mu_d per face, the smallest over the faces a vertex lies on.
-std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
-  std::vector<double> per_face(g.num_faces() + 1, kNoLimit);
-  for (int f = 1; f <= g.num_faces(); ++f) {
-    const double l = g.face_boundary_length(f);
-    if (l > 0) per_face[f] = 2.0 * g.face_area(f) / l / face_mu(p, f);
+namespace {
+
+uint64_t pair_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+}
+
+// The width of one face across itself at each of its boundary vertices: from
+// the vertex, rays in uv along the inward normals (perpendicular in space to
+// the adjacent boundary edges, in the tangent plane) to the first boundary
+// edge they cross; the width is the distance in space to that crossing.
+// Seams and pole edges are no boundary. A crossing on a curve that meets the
+// vertex's own (other) curve at a point nearer than 10 widths is a corner
+// closing, not a thin region, and is passed over. Results: (global vertex, width).
+void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& patch,
+                 const std::unordered_map<uint64_t, int>& edge_of, std::vector<std::pair<int, double>>& out) {
+  struct BEdge {
+    int a, b, curve;  // local vertices (interior on the left going a -> b), curve id
+  };
+  std::vector<BEdge> border;
+  std::unordered_map<uint64_t, int> seen;  // global pair -> count among boundary edges
+  for (size_t t = 0; t < patch.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      if (patch.adj[t][k] >= 0) continue;
+      const int a = patch.tris[t][(k + 1) % 3], b = patch.tris[t][(k + 2) % 3];
+      const int ga = patch.vertex[a], gb = patch.vertex[b];
+      if (ga == gb) continue;  // collapsed onto a pole
+      auto it = edge_of.find(pair_key(ga, gb));
+      border.push_back({a, b, it == edge_of.end() ? 0 : bg.edge_curve[it->second]});
+      ++seen[pair_key(ga, gb)];
+    }
+  auto is_seam = [&](const BEdge& e) { return seen[pair_key(patch.vertex[e.a], patch.vertex[e.b])] > 1; };
+  std::vector<char> seam(border.size());
+  for (size_t i = 0; i < border.size(); ++i) seam[i] = is_seam(border[i]);
+  // B-rep points that end the curve a vertex lies on (or the point itself).
+  auto ends = [&](int v, int curve, int out_pts[2]) {
+    out_pts[0] = out_pts[1] = -1;
+    if (bg.dim[v] == 0) out_pts[0] = bg.entity[v];
+    else if (curve > 0) out_pts[0] = g.curve_start_point(curve), out_pts[1] = g.curve_end_point(curve);
+  };
+  for (size_t i = 0; i < border.size(); ++i) {
+    if (seam[i]) continue;
+    const BEdge& e = border[i];
+    const Vec2 mid = 0.5 * (patch.uv[e.a] + patch.uv[e.b]);
+    const SurfaceD1 s = g.eval_face(patch.face, mid);
+    const Vec3 along = bg.xyz[patch.vertex[e.b]] - bg.xyz[patch.vertex[e.a]];
+    const Vec3 inward = s.du.cross(s.dv).cross(along);  // left of a -> b in uv, in space
+    Eigen::Matrix2d jtj;
+    jtj << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
+    if (!(std::abs(jtj.determinant()) > 0) || !(inward.norm() > 0)) continue;
+    const Vec2 dir = jtj.inverse() * Vec2(s.du.dot(inward), s.dv.dot(inward));
+    for (int from : {e.a, e.b}) {
+      const Vec2 o = patch.uv[from];
+      const Vec3 xo = bg.xyz[patch.vertex[from]];
+      int own[2];
+      ends(patch.vertex[from], e.curve, own);
+      double best = kNoLimit;
+      for (size_t j = 0; j < border.size(); ++j) {
+        const BEdge& h = border[j];
+        if (seam[j] || h.a == from || h.b == from) continue;
+        const Vec2 p = patch.uv[h.a], q = patch.uv[h.b] - p;
+        const double det = dir.x() * (-q.y()) - dir.y() * (-q.x());
+        if (std::abs(det) < 1e-300) continue;
+        const Vec2 w = p - o;
+        const double sray = (w.x() * (-q.y()) - w.y() * (-q.x())) / det;
+        const double r = (dir.x() * w.y() - dir.y() * w.x()) / det;
+        if (!(sray > 0) || r < 0 || r > 1) continue;
+        const Vec3 hit = (1 - r) * bg.xyz[patch.vertex[h.a]] + r * bg.xyz[patch.vertex[h.b]];
+        const double width = (hit - xo).norm();
+        if (!(width < best)) continue;
+        bool corner = false;
+        for (int pt : own)
+          if (pt > 0 && h.curve > 0 && h.curve != e.curve &&
+              (g.curve_start_point(h.curve) == pt || g.curve_end_point(h.curve) == pt))
+            corner |= (g.point_xyz(pt) - xo).norm() < 10 * width;
+        if (!corner) best = width;
+      }
+      if (best < kNoLimit) out.emplace_back(patch.vertex[from], best);
+    }
   }
+}
+
+}  // namespace
+
+// h_d1 = d_s / mu_d: the paper's d_s = 2 A / l is a face's width when the face
+// is a strip, and nothing like it for a plate with holes or a ragged border.
+// Here d_s is that width measured locally, across the face from each boundary
+// vertex (equal to 2 A / l on a strip); the smallest over a vertex's faces.
+// Inner vertices get no face-proximity bound: gradation carries it inwards.
+std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
+  std::unordered_map<uint64_t, int> edge_of;
+  edge_of.reserve(bg.edges.size() * 2);
+  for (size_t e = 0; e < bg.edges.size(); ++e)
+    if (bg.edge_curve[e]) edge_of.emplace(pair_key(bg.edges[e][0], bg.edges[e][1]), static_cast<int>(e));
+  std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
+  tbb::parallel_for(0, static_cast<int>(bg.patches.size()), [&](int i) {
+    if (!bg.patches[i].tris.empty()) face_widths(g, bg, bg.patches[i], edge_of, widths[i]);
+  });
   std::vector<double> h(bg.num_vertices(), kNoLimit);
-  for (int v = 0; v < bg.num_vertices(); ++v)
-    for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) h[v] = std::min(h[v], per_face[bg.use_face[u]]);
+  for (size_t i = 0; i < widths.size(); ++i)
+    for (const auto& [v, w] : widths[i]) h[v] = std::min(h[v], w / face_mu(p, static_cast<int>(i) + 1));
   return h;
 }
 

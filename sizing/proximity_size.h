@@ -1,6 +1,8 @@
 // Proximity sizes per background vertex (paper 3.2.2), plus local gaps.
 //
-// face:  h_d1 = d_s / mu_d with d_s = 2 A / l (face area over its boundary length)
+// face:  h_d1 = d_s / mu_d with d_s the face's width across itself, measured
+//        from each boundary vertex (the paper's 2 A / l is that width for a
+//        strip-shaped face; measured locally it also holds for other shapes)
 // curve: h_d0 = length of the shortest curve through the vertex
 // gap:   g / mu_d, g the distance along +-normal (of each face the vertex lies
 //        on) to the nearest opposite-facing surface of another face (thin

@@ -17,6 +17,12 @@ double now() {
 
 // Relative slack kept below a bound so that round-off never leaves a size above it.
 constexpr double kSlack = 1e-12;
+// A corrected triangle is left this far (relative) below its gradient bound.
+// Corrected exactly to the bound, a triangle is pushed over it again by every
+// later lowering of its smallest corner, however tiny, and the rounds creep
+// on without end; with this margin each new correction lowers a size by a
+// finite step, so the rounds end.
+constexpr double kTriangleMargin = 1e-3;
 
 // Gradient of the linear interpolant on a triangle in its own plane (Eq. 11),
 // written with size differences from the corner `o0` so that equal sizes give
@@ -61,16 +67,22 @@ bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vec
   double& h0 = h[tr[o[0]]];
   double& h1 = h[tr[o[1]]];
   double& h2 = h[tr[o[2]]];
-  const double L = log_beta * (1 - kSlack);
+  const double L = log_beta * (1 - kTriangleMargin);
   auto lowered = [&](double& hv, double value) {
     if (!(value >= h0) || !(value < hv)) return false;
     hv = value;
     return true;
   };
   const double a = h1 - h0, b = h2 - h0;
-  const double disc_a = f.det * (f.g11 * L * L - a * a);
+  // An edge at its own bound (between L and ln(beta)) gives the root of zero
+  // discriminant: the gradient is then that edge's slope, within the bound.
+  auto disc = [&](double g, double d) {
+    const double q = f.det * (g * L * L - d * d);
+    return q < 0 && d * d <= g * log_beta * log_beta * (1 + 1e-9) ? 0.0 : q;
+  };
+  const double disc_a = disc(f.g11, a);
   if (disc_a >= 0 && lowered(h2, h0 + (a * f.g12 + std::sqrt(disc_a)) / f.g11)) return true;
-  const double disc_b = f.det * (f.g22 * L * L - b * b);
+  const double disc_b = disc(f.g22, b);
   if (disc_b >= 0 && lowered(h1, h0 + (b * f.g12 + std::sqrt(disc_b)) / f.g22)) return true;
   const double opposite2 = f.g11 + f.g22 - 2 * f.g12;  // |p2 - p1|^2; height_0 = 2A / |p2 - p1|
   const double both = h0 + L * std::sqrt(f.det / opposite2);

@@ -53,8 +53,14 @@ int main(int argc, char** argv) {
       ->capture_default_str()->group(sizing);
   app.add_option("--h-min", o.sizing.h_min, "smallest element size (model units)")->group(sizing);
   app.add_option("--h-max", o.sizing.h_max, "largest element size (model units)")->group(sizing);
+  app.add_option("--deviation", o.sizing.deviation,
+                 "curvature: largest chord height of an element edge off the surface (model units; 0: no bound)")
+      ->group(sizing);
   app.add_flag("!--no-gaps", o.sizing.local_proximity,
                "do not refine thin gaps between faces (plates, blunt trailing edges, part gaps)")->group(sizing);
+  app.add_flag("!--no-refine-background", o.sizing.refine_background,
+               "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow")
+      ->group(sizing);
   app.add_option("--config", o.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json)")->group(sizing);

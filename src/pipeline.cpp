@@ -5,7 +5,7 @@
 
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
-#include "sizing/initial_sizes.h"
+#include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "src/background_output.h"
 #include "src/mesh_output.h"
@@ -48,7 +48,8 @@ int run(const RunOptions& o) {
   clock.lap("load");
   BackgroundMesh bg = build_background_mesh(model, o.tessellation);            // geometry/ (paper 3.1)
   clock.lap("background");
-  SizeMap h = initial_sizes(model, bg, params, model.info().diagonal());      // sizing/   (3.2, 3.4)
+  SizeMap h = refine_background(model, bg, params, model.info().diagonal(),   // sizing/   (3.2, 3.4)
+                                &report.refinement);
   clock.lap("initial_sizes");
   report.smoothing = smooth(bg, h, o.edge_solver);                             // sizing/   (3.3, Eq. 11-12)
   clock.lap("smoothing");
@@ -58,7 +59,9 @@ int run(const RunOptions& o) {
   report.sizes = &h;
   if (o.verbose) {
     std::cout << "model: " << model.info().faces << " faces, " << model.info().curves << " curves; background mesh "
-              << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices\n";
+              << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices ("
+              << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
+              << " edges split in " << report.refinement.rounds << " rounds)\n";
     print_sizing_summary(bg, h, report.smoothing, std::cout);
   }
   if (!o.background.empty()) write_background_sizes(o.background, bg, h);

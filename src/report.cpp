@@ -17,7 +17,11 @@ nlohmann::json report_json(const RunReport& r) {
                 {"file", info.path},       {"format", info.format},   {"unit", info.unit},
                 {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
                 {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing}};
-  j["background"] = {{"triangles", r.background_triangles}, {"vertices", r.background_vertices}};
+  j["background"] = {{"triangles", r.background_triangles},
+                     {"vertices", r.background_vertices},
+                     {"tessellation_vertices", r.refinement.vertices_before},
+                     {"refinement_rounds", r.refinement.rounds},
+                     {"refinement_edges_split", r.refinement.edges_split}};
   if (r.sizes) {
     std::vector<int> count(kNumLimits, 0);
     for (Limit l : r.sizes->limit) ++count[static_cast<int>(l)];

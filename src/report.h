@@ -13,6 +13,7 @@
 #include "geometry/model.h"
 #include "mesher/quality.h"
 #include "mesher/surface_mesh.h"
+#include "sizing/refine_background.h"
 #include "sizing/size_map.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
@@ -23,6 +24,7 @@ struct RunReport {
   const Model* model = nullptr;
   int background_triangles = 0, background_vertices = 0;
   const SizeMap* sizes = nullptr;
+  RefineStats refinement;
   SmoothStats smoothing;
   const SurfaceMesh* mesh = nullptr;
   MeshQuality quality;

@@ -65,6 +65,39 @@ TEST_CASE("sphere of radius r gives h_c = 2 r sin(phi_c / 2) at every vertex, po
   }
 }
 
+TEST_CASE("a deviation bound caps the curvature size by the chord of height delta") {
+  const double r = 2.5, delta = 0.01;
+  SizingParams p = curvature_only(90.0);  // 2 r sin(45 deg) = 3.5: the deviation bound is the smaller
+  p.deviation = delta;
+  Sized s = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
+  const double expected = 2 * std::sqrt(2 * r * delta - delta * delta);  // 0.447
+  for (int v = 0; v < s.bg.num_vertices(); ++v) CHECK(s.m.h_curvature[v] == Approx(expected).epsilon(0.01));
+  p.deviation = 0;  // none: back to 2 r sin(phi_c / 2)
+  Sized off = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
+  for (int v = 0; v < off.bg.num_vertices(); ++v)
+    CHECK(off.m.h_curvature[v] == Approx(2 * r * std::sin(M_PI / 4)).epsilon(0.01));
+}
+
+TEST_CASE("face proximity is the width across the face: a disc's diameter, not 2 A / l") {
+  // A cylinder of radius 2 and height 20: its caps are discs 4 across (2A/l
+  // would say 2), its side a band 20 wide.
+  SizingParams p;
+  p.local_proximity = false;
+  p.h_min = 1e-6;
+  p.h_max = 100;
+  Sized s = size_shape(BRepPrimAPI_MakeCylinder(2.0, 20.0).Shape(), p);
+  int rim = 0;
+  for (int v = 0; v < s.bg.num_vertices(); ++v) {
+    const double z = s.bg.xyz[v].z();
+    if (s.bg.dim[v] == 2 || (std::abs(z) > 1e-9 && std::abs(z - 20) > 1e-9)) continue;  // on the caps' circles
+    ++rim;
+    // Across the cap through the axis: 4 (the chord of the tessellated circle
+    // is a little shorter), over mu_d = 2.
+    CHECK(s.m.h_proximity[v] == Approx(2.0).epsilon(0.01));
+  }
+  CHECK(rim > 20);
+}
+
 TEST_CASE("cylinder of radius r gives h_c = 2 r sin(phi_c / 2) on its side and no limit inside its flat caps") {
   const double r = 1.5;
   Sized s = size_shape(BRepPrimAPI_MakeCylinder(r, 4.0).Shape(), curvature_only(5.0));
@@ -97,10 +130,10 @@ TEST_CASE("a box with one tiny edge grades away from it at exactly the bound") {
   Sized s = size_shape(prism, p);
   REQUIRE(s.model.info().solids == 1);
   // The narrow side face along the tiny edge (0.01 x 10) sets the smallest
-  // size: 2 A / l / mu_d = 2 * 0.1 / 20.02 / 2.
+  // size: its width across, 0.01, over mu_d = 2.
   double h_tiny = kNoLimit;
   for (int v = 0; v < s.bg.num_vertices(); ++v) h_tiny = std::min(h_tiny, s.m.h_initial[v]);
-  CHECK(h_tiny == Approx(0.1 / 20.02).epsilon(1e-9));
+  CHECK(h_tiny == Approx(0.01 / 2).epsilon(1e-9));
   // Edge stage alone: along every edge leaving the smallest size the growth is at
   // most ln(beta) l, and exactly that where no shorter path reaches the far end.
   std::vector<double> h = s.m.h_initial;
@@ -257,6 +290,8 @@ TEST_CASE("bad sizing parameters give one clear error and a non-zero exit") {
   expect_error("--mu-d 0", "mu_d must be positive");
   expect_error("--mu-d -2", "mu_d must be positive");
   expect_error("--h-min 10 --h-max 1", "is larger than h_max");
+  expect_error("--deviation -1", "deviation must be zero (none) or positive");
+  expect_error("--config " + config("dev.json", R"({"deviation": "fine"})"), "deviation must be a number");
   expect_error("--config " + config("id.json", R"({"face_size": {"99": 1.0}})"), "names face 99 but the model has 11");
   expect_error("--config " + config("expr.json", R"({"face_size": {"1": "2 * (x + "}})"), "malformed size expression");
   expect_error("--config " + config("neg.json", R"({"face_size": {"1": "x - 1e9"}})"), "sizes must be positive");

@@ -1,0 +1,39 @@
+// Background refinement for the size map (beyond the paper).
+//
+// The size map is linear on each background triangle, and a tessellation made
+// for geometric accuracy has long edges wherever the surface is flat: a plane
+// with small holes, or a long straight trailing edge, is spanned by a few
+// triangles whose corners all carry the small sizes of the features at their
+// ends. Gradation would let the size grow away from those features, but no
+// vertex is there to hold the larger size, so the whole face is meshed at the
+// feature's size. This splits every background edge (inside faces and along
+// curves) whose graded size at its midpoint, min(h_a, h_b) + ln(beta) l / 2
+// capped by h_max, exceeds the linear interpolation (h_a + h_b) / 2 by more than
+// the factor kGain, recomputing the initial and edge-graded sizes after each
+// round, until no edge qualifies or kMaxRounds rounds have run.
+//
+// Inputs:  g geometry, bg background mesh (refined in place), p parameters, diagonal
+// Output:  the initial size map on the refined background (not yet smoothed).
+#pragma once
+
+#include "geometry/background_mesh.h"
+#include "geometry/geometry.h"
+#include "sizing/params.h"
+#include "sizing/size_map.h"
+
+namespace sizemesh {
+
+struct RefineStats {
+  int rounds = 0;
+  int edges_split = 0;
+  int vertices_before = 0, vertices_after = 0;
+};
+
+// The factor by which the graded midpoint size must exceed the linear one.
+constexpr double kRefineGain = 2.0;
+constexpr int kRefineMaxRounds = 8;
+
+SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
+                          RefineStats* stats = nullptr);
+
+}  // namespace sizemesh

@@ -1,0 +1,99 @@
+// Background refinement: the split background keeps every classification and
+// lies on the CAD, and it lets the smoothed size grow away from small features
+// where the tessellation alone cannot.
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <gp_Ax2.hxx>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "geometry/occt_model.h"
+#include "sizing/refine_background.h"
+#include "sizing/size_query.h"
+#include "sizing/smooth.h"
+#include "tests/test_models.h"
+
+using namespace sizemesh;
+
+TEST_CASE("refined backgrounds stay classified, on the CAD and watertight, and their smoothed sizes meet the bounds") {
+  for (const auto& sm : test::shared_models()) {
+    SECTION(sm.file) {
+      Model model = load_model(test::model_path(sm.file));
+      BackgroundMesh bg = build_background_mesh(model);
+      const double diag = model.info().diagonal(), area_before = bg.area();
+      RefineStats stats;
+      SizeMap m = refine_background(model, bg, SizingParams{}, diag, &stats);
+      CHECK(stats.vertices_after == bg.num_vertices());
+      CHECK(stats.vertices_after - stats.vertices_before == stats.edges_split);  // one vertex per split
+      CHECK(stats.rounds <= kRefineMaxRounds);
+      CHECK(m.h_initial.size() == bg.xyz.size());
+      // Every use's uv lands on its vertex; curve vertices sit at their parameter.
+      const double tol = 2e-3 * diag;  // twice the tessellation's deflection
+      for (const FacePatch& patch : bg.patches) {
+        for (size_t l = 0; l < patch.vertex.size(); ++l)
+          CHECK((model.eval_face(patch.face, patch.uv[l]).p - bg.xyz[patch.vertex[l]]).norm() <= tol);
+        for (const auto& t : patch.tris) {  // counter-clockwise in uv, as built
+          const Vec2 a = patch.uv[t[1]] - patch.uv[t[0]], b = patch.uv[t[2]] - patch.uv[t[0]];
+          CHECK(a.x() * b.y() - a.y() * b.x() > 0);
+        }
+      }
+      for (int v = 0; v < bg.num_vertices(); ++v)
+        if (bg.dim[v] == 1) CHECK((model.eval_curve(bg.entity[v], bg.curve_t[v]) - bg.xyz[v]).norm() <= 1e-9 * diag);
+      if (sm.closed)
+        for (int valence : bg.edge_valence()) CHECK(valence == 2);
+      CHECK(std::abs(bg.area() - area_before) <= 0.01 * area_before);
+      smooth(bg, m);
+      const GradationCheck c = check_gradation(bg, m);
+      CHECK(c.max_edge_ratio <= 1 + 1e-9);
+      CHECK(c.max_triangle_ratio <= 1 + 1e-9);
+      for (int v = 0; v < bg.num_vertices(); ++v) {
+        CHECK(m.h[v] <= m.h_initial[v]);
+        CHECK(m.h[v] >= m.h_min * (1 - 1e-12));
+      }
+    }
+  }
+}
+
+TEST_CASE("away from small holes in a large flat face the size grows at the gradation rate only with refinement") {
+  // A 100 mm cube with eight holes of radius 0.5 through it around its centre
+  // line: the top face is a plane whose tessellation spans the 80 mm between
+  // holes with triangles whose corners all carry the holes' small sizes.
+  TopoDS_Shape shape = BRepPrimAPI_MakeBox(100.0, 100.0, 100.0).Shape();
+  for (const auto& [x, y] : {std::pair{10.0, 10.0}, {50.0, 10.0}, {90.0, 10.0}, {10.0, 50.0}, {90.0, 50.0},
+                             {10.0, 90.0}, {50.0, 90.0}, {90.0, 90.0}})
+    shape = BRepAlgoAPI_Cut(shape, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, -1), gp_Dir(0, 0, 1)), 0.5, 102.0).Shape())
+                .Shape();
+  auto size_at = [&](bool refine, const Vec3& p, double& h_hole) {
+    Model model = model_from_shape(shape);
+    BackgroundMesh bg = build_background_mesh(model);
+    SizingParams params;
+    params.refine_background = refine;
+    params.local_proximity = false;
+    SizeMap m = refine_background(model, bg, params, model.info().diagonal());
+    smooth(bg, m);
+    h_hole = kNoLimit;
+    for (int v = 0; v < bg.num_vertices(); ++v) h_hole = std::min(h_hole, m.h[v]);
+    int top = 0;
+    for (int f = 1; f <= model.num_faces() && !top; ++f) {
+      Vec2 uv(0, 0);
+      if (model.project_to_face(f, p, uv) && (model.eval_face(f, uv).p - p).norm() < 1e-9) top = f;
+    }
+    REQUIRE(top > 0);
+    Vec2 uv(0, 0);
+    REQUIRE(model.project_to_face(top, p, uv));
+    const SizeQuery q = size_query_for(model, bg, m.h);
+    int hint = -1;
+    return q.at(top, uv, hint);
+  };
+  const Vec3 p(50, 50, 100);  // on the top face, 39.5 from the nearest hole
+  double hole_refined, hole_plain;
+  const double refined = size_at(true, p, hole_refined), plain = size_at(false, p, hole_plain);
+  const double graded = std::min(0.05 * std::sqrt(3.0) * 100, hole_refined + std::log(1.2) * 39.5);  // 7.2
+  INFO("refined " << refined << ", plain " << plain << ", graded bound " << graded);
+  CHECK(hole_refined == Approx(hole_plain));
+  CHECK(refined <= graded * (1 + 1e-9));
+  CHECK(refined >= 0.5 * graded);
+  CHECK(plain < 0.5 * graded);  // the tessellation alone keeps the hole's size far out
+}
