@@ -9,6 +9,16 @@ surface relative to the bounding-box diagonal. Prints a Markdown table and
 ratios against Gmsh. Never fails on numbers.
 
     /usr/bin/python3 bench/peers.py [--build build] [--models DIR] [--phi 10 5] [--timeout 300] [--only NAME...]
+    /usr/bin/python3 bench/peers.py --sweep [--only NAME...]
+
+--sweep compares at matched accuracy instead: each tool runs at several levels
+of its own refinement parameter (Gmsh and Netgen: phi_c; sizemesh: the
+deviation bound, with phi_c = 30), and for every sizemesh mesh the triangles a
+peer needs for the same maximum centroid distance are interpolated (log-log)
+between that peer's two bracketing meshes. A ratio below 1 means sizemesh
+needs fewer triangles for the same surface accuracy. sizemesh runs twice:
+with its default proximity sizing, and with proximity off ("sizemesh-fidelity",
+what the peers do: size from the geometry's curvature alone).
 
 Settings (as the paper's defaults): beta = 1.2, h_max = diag / 20, h_min = diag / 1e4 for all tools;
 Gmsh 4.8: Frontal-Delaunay, Mesh.MeshSizeFromCurvature = round(360 / phi_c);
@@ -79,6 +89,81 @@ def metrics(build, model, mesh):
     return json.loads(p.stdout) if p.returncode == 0 else None
 
 
+def tool_command(a, tool, name, path, out, info, level):
+    """Command line of one run; level is phi_c for the peers, the relative deviation for sizemesh."""
+    diag, unit = info["diag"], info["unit"]
+    hmin, hmax = diag / 1e4, diag / 20
+    if tool.startswith("sizemesh"):
+        cmd = [os.path.join(a.build, "sizemesh"), path, "-o", out, "-q", "--threads", "1", "--h-min", repr(hmin),
+               "--h-max", repr(hmax)]
+        if a.sweep:
+            cmd += ["--phi-c", "30", "--deviation", repr(level * diag)]
+            if tool == "sizemesh-fidelity":
+                cmd += ["--no-proximity"]
+        else:
+            cmd += ["--phi-c", str(level)]
+        return cmd
+    if tool == "gmsh":
+        iges = name.lower().endswith((".igs", ".iges"))  # Gmsh takes no target unit for IGES
+        return ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, "" if iges else GMSH_UNITS.get(unit, ""),
+                repr(hmin), repr(hmax), str(round(360 / level))]
+    scale = UNIT_MM.get(unit, 1.0)
+    return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(level)]
+
+
+def matched(points, dist):
+    """Triangles at max distance `dist` on a tool's (distance, triangles) curve, log-log; None outside it."""
+    pts = sorted(p for p in points if p[0] > 0)
+    for (d0, n0), (d1, n1) in zip(pts, pts[1:]):
+        if d0 <= dist <= d1 and d1 > d0:
+            w = math.log(dist / d0) / math.log(d1 / d0)
+            return math.exp((1 - w) * math.log(n0) + w * math.log(n1))
+    return None
+
+
+def sweep(a):
+    levels = {"sizemesh": [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], "gmsh": [20, 10, 7, 5, 3.5], "netgen": [20, 10, 7, 5, 3.5]}
+    levels["sizemesh-fidelity"] = levels["sizemesh"]
+    tools = ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"]
+    tmp = tempfile.mkdtemp(prefix="sizemesh_sweep_")
+    print("| model | tool | level | wall s | triangles | <12 deg | <24 deg | max dist/diag |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    curves = {}
+    for name in MODELS:
+        if a.only and not any(o in name for o in a.only):
+            continue
+        path = os.path.join(a.models, name)
+        info = model_info(a.build, path)
+        for tool in tools:
+            for level in levels[tool]:
+                out = os.path.join(tmp, "%s_%s_%g.msh" % (name, tool, level))
+                wall, err = run(tool_command(a, tool, name, path, out, info, level), a.timeout)
+                m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
+                if m is None:
+                    print("| %s | %s | %g | %s | - | - | - | - |" % (name, tool, level, err or "no mesh"))
+                    continue
+                curves.setdefault((name, tool), []).append((m["max_centroid_distance_rel"], m["triangles"]))
+                print("| %s | %s | %g | %.2f | %d | %.3f%% | %.3f%% | %.2e |" % (
+                    name, tool, level, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
+                    m["max_centroid_distance_rel"]))
+                sys.stdout.flush()
+    print("\nTriangles at the same maximum distance, sizemesh / peer (interpolated on the peer's curve):\n")
+    print("| model | sizemesh run | max dist/diag | triangles | / gmsh | / netgen |")
+    print("|---|---|---:|---:|---:|---:|")
+    for (name, tool), pts in curves.items():
+        if not tool.startswith("sizemesh"):
+            continue
+        for d, n in pts:
+            ratio = []
+            for peer in ("gmsh", "netgen"):
+                r = matched(curves.get((name, peer), []), d)
+                ratio.append("%.2f" % (n / r) if r else "-")
+            print("| %s | %s | %.2e | %d | %s | %s |" % (name, tool, d, n, ratio[0], ratio[1]))
+    with open(os.path.join(tmp, "curves.json"), "w") as f:
+        json.dump({"%s|%s" % k: v for k, v in curves.items()}, f, indent=1)
+    print("\nmeshes and curves.json in", tmp)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -87,7 +172,10 @@ def main():
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--tools", nargs="*", default=["sizemesh", "gmsh", "netgen"])
+    ap.add_argument("--sweep", action="store_true")
     a = ap.parse_args()
+    if a.sweep:
+        return sweep(a)
     tmp = tempfile.mkdtemp(prefix="sizemesh_peers_")
     rows = []
     print("| model | phi_c | tool | wall s | triangles | tris/s | <12 deg | <24 deg | max dist/diag | mean dist/diag |")

@@ -44,12 +44,15 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   m.h_curvature = curvature_sizes(g, bg, p);
   m.t_curvature = now() - t;
   t = now();
-  std::vector<double> h_face = face_proximity_sizes(g, bg, p);
-  std::vector<double> h_curve = curve_length_sizes(g, bg);
+  std::vector<double> h_face(bg.num_vertices(), kNoLimit), h_curve(bg.num_vertices(), kNoLimit);
+  if (p.proximity) {
+    h_face = face_proximity_sizes(g, bg, p);
+    h_curve = curve_length_sizes(g, bg);
+  }
   m.t_proximity = now() - t;
   t = now();
   std::vector<double> h_gap(bg.num_vertices(), kNoLimit);
-  if (p.local_proximity) {
+  if (p.proximity && p.local_proximity) {
     double mu_max = p.mu_d;
     for (const auto& [f, mu] : p.face_mu_d) mu_max = std::max(mu_max, mu);
     h_gap = gap_sizes(g, bg, p, m.h_max * mu_max);

@@ -114,7 +114,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   static const std::set<std::string> known = {"phi_c",      "mu_d",      "beta",      "h_min",   "h_max",
-                                              "deviation", "local_proximity", "refine_background", "curve_phi_c", "face_phi_c", "face_mu_d",
+                                              "deviation", "proximity", "local_proximity", "refine_background", "curve_phi_c", "face_phi_c", "face_mu_d",
                                               "face_beta",  "point_size", "curve_size", "face_size"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -124,7 +124,8 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("h_min")) p.h_min = number(j["h_min"], "h_min");
   if (j.contains("h_max")) p.h_max = number(j["h_max"], "h_max");
   if (j.contains("deviation")) p.deviation = number(j["deviation"], "deviation");
-  for (auto [key, flag] : {std::pair{"local_proximity", &p.local_proximity}, {"refine_background", &p.refine_background}})
+  for (auto [key, flag] : {std::pair{"proximity", &p.proximity}, {"local_proximity", &p.local_proximity},
+                           {"refine_background", &p.refine_background}})
     if (j.contains(key)) {
       if (!j[key].is_boolean()) throw Error(std::string("config: ") + key + " must be true or false");
       *flag = j[key].get<bool>();

@@ -23,6 +23,7 @@ struct SizingParams {
   double h_min_rel = 1e-3;
   double h_max_rel = 0.05;
   double deviation = 0;     // curvature: largest chord height of an element edge (model units); 0: none
+  bool proximity = true;        // all proximity sizes: face width, curve length and gaps (paper 3.2.2)
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;

@@ -192,7 +192,7 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
       const auto& tr = bg.tris[t];
       const double before[3] = {m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]};
       // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
-      if (round < 50) correct_triangle(bg, t, lb, m.h);
+      if (round < 1000) correct_triangle(bg, t, lb, m.h);
       else m.h[tr[0]] = m.h[tr[1]] = m.h[tr[2]] = std::min({before[0], before[1], before[2]});
       for (int k = 0; k < 3; ++k)
         if (m.h[tr[k]] < before[k]) changed.push_back(tr[k]);

@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
   app.add_option("--deviation", o.sizing.deviation,
                  "curvature: largest chord height of an element edge off the surface (model units; 0: no bound)")
       ->group(sizing);
+  app.add_flag("!--no-proximity", o.sizing.proximity,
+               "size from curvature (and user sizes) alone: no face width, curve length or gap sizes")
+      ->group(sizing);
   app.add_flag("!--no-gaps", o.sizing.local_proximity,
                "do not refine thin gaps between faces (plates, blunt trailing edges, part gaps)")->group(sizing);
   app.add_flag("!--no-refine-background", o.sizing.refine_background,
