@@ -19,6 +19,7 @@
 #include "sizing/initial_sizes.h"
 #include "sizing/lp_smooth.h"
 #include "sizing/proximity_size.h"
+#include "sizing/refine_background.h"
 #include "sizing/smooth.h"
 #include "tests/cli_runner.h"
 #include "tests/test_models.h"
@@ -205,7 +206,7 @@ TEST_CASE("smoothed map meets the edge and triangle bounds on every shared model
     SECTION(sm.file) {
       Model model = load_model(test::model_path(sm.file));
       BackgroundMesh bg = build_background_mesh(model);
-      SizeMap m = initial_sizes(model, bg, SizingParams{}, model.info().diagonal());
+      SizeMap m = refine_background(model, bg, SizingParams{}, model.info().diagonal());  // as the pipeline does
       smooth(bg, m);
       const GradationCheck c = check_gradation(bg, m);
       CHECK(c.max_edge_ratio <= 1 + 1e-9);
