@@ -12,11 +12,12 @@ ratios against Gmsh. Never fails on numbers.
     /usr/bin/python3 bench/peers.py --sweep [--only NAME...]
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
-of its own refinement parameter (Gmsh and Netgen: phi_c; sizemesh: the
-deviation bound, with phi_c = 30), and for every sizemesh mesh the triangles a
+of its own refinement parameter (Gmsh: phi_c; Netgen: phi_c and maxh;
+sizemesh: the deviation bound, with phi_c = 30), and for every sizemesh mesh the triangles a
 peer needs for the same maximum centroid distance are interpolated (log-log)
 between that peer's two bracketing meshes. A ratio below 1 means sizemesh
-needs fewer triangles for the same surface accuracy. sizemesh runs twice:
+needs fewer triangles for the same surface accuracy; "<0.2" means the peer's
+finest run is still less accurate, with 5 times sizemesh's triangles. sizemesh runs twice:
 with its default proximity sizing, and with proximity off ("sizemesh-fidelity",
 what the peers do: size from the geometry's curvature alone).
 
@@ -108,23 +109,36 @@ def tool_command(a, tool, name, path, out, info, level):
         return ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, "" if iges else GMSH_UNITS.get(unit, ""),
                 repr(hmin), repr(hmax), str(round(360 / level))]
     scale = UNIT_MM.get(unit, 1.0)
-    return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(level)]
+    phi, maxh = (level if isinstance(level, tuple) else (level, 1.0))
+    return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * maxh * scale), "1.2", str(phi)]
 
 
 def matched(points, dist):
-    """Triangles at max distance `dist` on a tool's (distance, triangles) curve, log-log; None outside it."""
+    """Triangles a tool needs for max distance `dist`, from its (distance, triangles) runs, log-log
+    between the two runs that bracket it. Outside its runs, a bound: ("<", n) when even its
+    finest run stays above `dist` (it needs more than n), (">", n) when its coarsest is already
+    below (it needs fewer than n). None without runs."""
     pts = sorted(p for p in points if p[0] > 0)
+    if not pts:
+        return None
     for (d0, n0), (d1, n1) in zip(pts, pts[1:]):
         if d0 <= dist <= d1 and d1 > d0:
             w = math.log(dist / d0) / math.log(d1 / d0)
-            return math.exp((1 - w) * math.log(n0) + w * math.log(n1))
-    return None
+            return ("=", math.exp((1 - w) * math.log(n0) + w * math.log(n1)))
+    if dist < pts[0][0]:
+        return ("<", max(n for d, n in pts if d == pts[0][0]))
+    if dist > pts[-1][0]:
+        return (">", min(n for d, n in pts if d == pts[-1][0]))
+    return ("=", pts[0][1])
 
 
 def sweep(a):
-    levels = {"sizemesh": [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], "gmsh": [20, 10, 7, 5, 3.5], "netgen": [20, 10, 7, 5, 3.5]}
+    # Netgen's curvature safety barely changes its surface meshes here, so its
+    # sweep also lowers maxh (as a fraction of h_max).
+    levels = {"sizemesh": [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5],
+              "netgen": [(20, 1.0), (10, 0.5), (7, 0.3), (5, 0.2), (3.5, 0.12), (3.5, 0.07)]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
-    tools = ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"]
+    tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
     tmp = tempfile.mkdtemp(prefix="sizemesh_sweep_")
     print("| model | tool | level | wall s | triangles | <12 deg | <24 deg | max dist/diag |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
@@ -136,15 +150,16 @@ def sweep(a):
         info = model_info(a.build, path)
         for tool in tools:
             for level in levels[tool]:
-                out = os.path.join(tmp, "%s_%s_%g.msh" % (name, tool, level))
+                tag = "%g" % level if not isinstance(level, tuple) else "%g_%g" % level
+                out = os.path.join(tmp, "%s_%s_%s.msh" % (name, tool, tag))
                 wall, err = run(tool_command(a, tool, name, path, out, info, level), a.timeout)
                 m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
                 if m is None:
-                    print("| %s | %s | %g | %s | - | - | - | - |" % (name, tool, level, err or "no mesh"))
+                    print("| %s | %s | %s | %s | - | - | - | - |" % (name, tool, tag, err or "no mesh"))
                     continue
                 curves.setdefault((name, tool), []).append((m["max_centroid_distance_rel"], m["triangles"]))
-                print("| %s | %s | %g | %.2f | %d | %.3f%% | %.3f%% | %.2e |" % (
-                    name, tool, level, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
+                print("| %s | %s | %s | %.2f | %d | %.3f%% | %.3f%% | %.2e |" % (
+                    name, tool, tag, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
                     m["max_centroid_distance_rel"]))
                 sys.stdout.flush()
     print("\nTriangles at the same maximum distance, sizemesh / peer (interpolated on the peer's curve):\n")
@@ -157,7 +172,7 @@ def sweep(a):
             ratio = []
             for peer in ("gmsh", "netgen"):
                 r = matched(curves.get((name, peer), []), d)
-                ratio.append("%.2f" % (n / r) if r else "-")
+                ratio.append("-" if r is None else "%s%.2f" % ("" if r[0] == "=" else r[0], n / r[1]))
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, tool, d, n, ratio[0], ratio[1]))
     with open(os.path.join(tmp, "curves.json"), "w") as f:
         json.dump({"%s|%s" % k: v for k, v in curves.items()}, f, indent=1)
@@ -171,7 +186,7 @@ def main():
     ap.add_argument("--phi", type=float, nargs="+", default=[10.0, 5.0])
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--only", nargs="*")
-    ap.add_argument("--tools", nargs="*", default=["sizemesh", "gmsh", "netgen"])
+    ap.add_argument("--tools", nargs="*", default=["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"])
     ap.add_argument("--sweep", action="store_true")
     a = ap.parse_args()
     if a.sweep:
@@ -185,22 +200,10 @@ def main():
             continue
         path = os.path.join(a.models, name)
         info = model_info(a.build, path)
-        diag, unit = info["diag"], info["unit"]
-        hmin, hmax = diag / 1e4, diag / 20
         for phi in a.phi:
-            for tool in a.tools:
+            for tool in [t for t in a.tools if t in ("sizemesh", "gmsh", "netgen")]:
                 out = os.path.join(tmp, "%s_%s_%g.msh" % (name, tool, phi))
-                if tool == "sizemesh":
-                    cmd = [os.path.join(a.build, "sizemesh"), path, "-o", out, "-q", "--threads", "1", "--phi-c", str(phi),
-                           "--h-min", repr(hmin), "--h-max", repr(hmax)]
-                elif tool == "gmsh":
-                    iges = name.lower().endswith((".igs", ".iges"))  # Gmsh takes no target unit for IGES
-                    cmd = ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, "" if iges else GMSH_UNITS.get(unit, ""),
-                           repr(hmin), repr(hmax),
-                           str(round(360 / phi))]
-                else:
-                    scale = UNIT_MM.get(unit, 1.0)
-                    cmd = ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(phi)]
+                cmd = tool_command(a, tool, name, path, out, info, phi)
                 wall, err = run(cmd, a.timeout)
                 m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
                 row = {"model": name, "phi_c": phi, "tool": tool, "wall": wall, "error": err, "metrics": m}
