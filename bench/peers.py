@@ -12,8 +12,9 @@ ratios against Gmsh. Never fails on numbers.
     /usr/bin/python3 bench/peers.py --sweep [--only NAME...]
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
-of its own refinement parameter (Gmsh: phi_c; Netgen: phi_c and maxh;
-sizemesh: the deviation bound, with phi_c = 30), and for every sizemesh mesh the triangles a
+of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
+with phi_c = 30; Netgen 6.2 ignores its meshing parameters on OCC geometry
+from Python, so it gives one point), and for every sizemesh mesh the triangles a
 peer needs for the same maximum centroid distance are interpolated (log-log)
 between that peer's two bracketing meshes. A ratio below 1 means sizemesh
 needs fewer triangles for the same surface accuracy; "<0.2" means the peer's
@@ -109,8 +110,7 @@ def tool_command(a, tool, name, path, out, info, level):
         return ["/usr/bin/python3", "-c", GMSH_SCRIPT, path, out, "" if iges else GMSH_UNITS.get(unit, ""),
                 repr(hmin), repr(hmax), str(round(360 / level))]
     scale = UNIT_MM.get(unit, 1.0)
-    phi, maxh = (level if isinstance(level, tuple) else (level, 1.0))
-    return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * maxh * scale), "1.2", str(phi)]
+    return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(level)]
 
 
 def matched(points, dist):
@@ -133,10 +133,11 @@ def matched(points, dist):
 
 
 def sweep(a):
-    # Netgen's curvature safety barely changes its surface meshes here, so its
-    # sweep also lowers maxh (as a fraction of h_max).
-    levels = {"sizemesh": [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5],
-              "netgen": [(20, 1.0), (10, 0.5), (7, 0.3), (5, 0.2), (3.5, 0.12), (3.5, 0.07)]}
+    # Netgen 6.2 from Python ignores the meshing parameters of an OCC geometry
+    # (its mesh is the same for every curvature safety and maxh tried), so it
+    # gives one point per model.
+    levels = {"sizemesh": [3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+              "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
     tmp = tempfile.mkdtemp(prefix="sizemesh_sweep_")
@@ -150,7 +151,7 @@ def sweep(a):
         info = model_info(a.build, path)
         for tool in tools:
             for level in levels[tool]:
-                tag = "%g" % level if not isinstance(level, tuple) else "%g_%g" % level
+                tag = "%g" % level
                 out = os.path.join(tmp, "%s_%s_%s.msh" % (name, tool, tag))
                 wall, err = run(tool_command(a, tool, name, path, out, info, level), a.timeout)
                 m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
