@@ -19,8 +19,9 @@ peer needs for the same maximum centroid distance are interpolated (log-log)
 between that peer's two bracketing meshes. A ratio below 1 means sizemesh
 needs fewer triangles for the same surface accuracy; "<0.2" means the peer's
 finest run is still less accurate, with 5 times sizemesh's triangles. sizemesh runs twice:
-with its default proximity sizing, and with proximity off ("sizemesh-fidelity",
-what the peers do: size from the geometry's curvature alone).
+with its default proximity sizing, and as "sizemesh-fidelity": proximity off and a
+looser gradation (beta 1.5; Gmsh bounds none), sizing from the geometry's curvature
+alone as the peers do.
 
 Settings (as the paper's defaults): beta = 1.2, h_max = diag / 20, h_min = diag / 1e4 for all tools;
 Gmsh 4.8: Frontal-Delaunay, Mesh.MeshSizeFromCurvature = round(360 / phi_c);
@@ -101,7 +102,7 @@ def tool_command(a, tool, name, path, out, info, level):
         if a.sweep:
             cmd += ["--phi-c", "30", "--deviation", repr(level * diag)]
             if tool == "sizemesh-fidelity":
-                cmd += ["--no-proximity"]
+                cmd += ["--no-proximity", "--beta", "1.5"]
         else:
             cmd += ["--phi-c", str(level)]
         return cmd
