@@ -114,12 +114,18 @@ def tool_command(a, tool, name, path, out, info, level):
     return ["/usr/bin/python3", "-c", NETGEN_SCRIPT, path, out, repr(hmax * scale), "1.2", str(level)]
 
 
+def pareto(points):
+    """The runs no other run beats on both counts (smaller distance with no more triangles): the
+    settings a user would pick. Others are dropped from the comparison."""
+    return sorted({(d, n) for d, n in points if not any(d2 <= d and n2 <= n and (d2, n2) != (d, n) for d2, n2 in points)})
+
+
 def matched(points, dist):
     """Triangles a tool needs for max distance `dist`, from its (distance, triangles) runs, log-log
     between the two runs that bracket it. Outside its runs, a bound: ("<", n) when even its
     finest run stays above `dist` (it needs more than n), (">", n) when its coarsest is already
     below (it needs fewer than n). None without runs."""
-    pts = sorted(p for p in points if p[0] > 0)
+    pts = pareto([p for p in points if p[0] > 0])
     if not pts:
         return None
     for (d0, n0), (d1, n1) in zip(pts, pts[1:]):
@@ -164,13 +170,14 @@ def sweep(a):
                     name, tool, tag, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
                     m["max_centroid_distance_rel"]))
                 sys.stdout.flush()
-    print("\nTriangles at the same maximum distance, sizemesh / peer (interpolated on the peer's curve):\n")
+    print("\nTriangles at the same maximum distance, sizemesh / peer (interpolated on the peer's curve;"
+          " only runs that no other run of the same tool beats on both counts):\n")
     print("| model | sizemesh run | max dist/diag | triangles | / gmsh | / netgen |")
     print("|---|---|---:|---:|---:|---:|")
     for (name, tool), pts in curves.items():
         if not tool.startswith("sizemesh"):
             continue
-        for d, n in pts:
+        for d, n in pareto(pts):
             ratio = []
             for peer in ("gmsh", "netgen"):
                 r = matched(curves.get((name, peer), []), d)
