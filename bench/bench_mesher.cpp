@@ -16,7 +16,7 @@
 #include "geometry/model.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
-#include "sizing/initial_sizes.h"
+#include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
 
@@ -87,8 +87,8 @@ int main(int argc, char** argv) {
       run(name, "uniform", model, uniform);
       if (!size_map) continue;
       const auto t0 = std::chrono::steady_clock::now();
-      const BackgroundMesh bg = build_background_mesh(model);
-      SizeMap map = initial_sizes(model, bg, SizingParams{}, diag);
+      BackgroundMesh bg = build_background_mesh(model);
+      SizeMap map = refine_background(model, bg, SizingParams{}, diag);  // as the pipeline does
       smooth(bg, map);
       const SizeQuery query = size_query_for(model, bg, map.h);
       std::printf("    size map built in %.3f s\n",
