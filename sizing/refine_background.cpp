@@ -42,9 +42,38 @@ SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingPar
       const double l = (bg.xyz[a] - bg.xyz[b]).norm();
       const double linear = 0.5 * (h[a] + h[b]);
       const double graded = std::min(m.h_max, std::min(h[a], h[b]) + m.edge_log_beta[e] * 0.5 * l);
-      if (graded > kRefineGain * linear && midpoint_curvature_size(g, bg, p, a, b) > kRefineGain * linear)
+      if (!(graded > kRefineGain * linear) && !(m.h_min * kCurvatureMiss < linear)) continue;
+      const double curved = midpoint_curvature_size(g, bg, p, a, b);
+      // Room to grow that the curvature there allows, or a curvature the ends miss.
+      if ((graded > kRefineGain * linear && curved > kRefineGain * linear) ||
+          std::max(curved, m.h_min) * kCurvatureMiss < linear)
         split.push_back(e);
     }
+    // A curvature peak inside a triangle: its longest edge is split.
+    for (const FacePatch& patch : bg.patches)
+      for (size_t t = 0; t < patch.tris.size(); ++t) {
+        const int gt = patch.global_tri[t];
+        if (gt < 0) continue;
+        const auto& lt = patch.tris[t];
+        const double hv[3] = {h[patch.vertex[lt[0]]], h[patch.vertex[lt[1]]], h[patch.vertex[lt[2]]]};
+        if (!(m.h_min * kCurvatureMiss < std::max({hv[0], hv[1], hv[2]}))) continue;
+        // The centroid and the three points halfway from it to the corners.
+        bool missed = false;
+        static const Vec3 kSamples[4] = {Vec3(2, 2, 2) / 6, Vec3(4, 1, 1) / 6, Vec3(1, 4, 1) / 6, Vec3(1, 1, 4) / 6};
+        for (const Vec3& w : kSamples) {
+          const Vec2 c = w[0] * patch.uv[lt[0]] + w[1] * patch.uv[lt[1]] + w[2] * patch.uv[lt[2]];
+          const double linear = w[0] * hv[0] + w[1] * hv[1] + w[2] * hv[2];
+          missed |= std::max(face_curvature_size(g, patch.face, c, p), m.h_min) * kCurvatureMiss < linear;
+          if (missed) break;
+        }
+        if (!missed) continue;
+        const auto& tr = bg.tris[gt];
+        int longest = 0;
+        for (int k = 1; k < 3; ++k)
+          if ((bg.xyz[tr[k]] - bg.xyz[tr[(k + 1) % 3]]).norm() > (bg.xyz[tr[longest]] - bg.xyz[tr[(longest + 1) % 3]]).norm())
+            longest = k;
+        split.push_back(bg.tri_edges[gt][longest]);
+      }
     const int n = split.empty() ? 0 : split_edges(bg, g, split);
     if (n == 0) break;
     s.rounds = round + 1;

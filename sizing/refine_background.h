@@ -9,8 +9,14 @@
 // feature's size. This splits every background edge (inside faces and along
 // curves) whose graded size at its midpoint, min(h_a, h_b) + ln(beta) l / 2
 // capped by h_max, exceeds the linear interpolation (h_a + h_b) / 2 by more than
-// the factor kGain, recomputing the initial and edge-graded sizes after each
-// round, until no edge qualifies or kMaxRounds rounds have run.
+// the factor kRefineGain (where the curvature at the midpoint allows it), and every
+// edge whose midpoint curvature size, or triangle (its longest edge) whose
+// curvature size at its centroid or halfway to a corner, is below the linear
+// one by the factor kCurvatureMiss (a curvature peak the tessellation stepped
+// over; the deviation of an element grows with the square of its size, so a
+// smaller factor), recomputing the initial and
+// edge-graded sizes after each round, until no edge qualifies or kRefineMaxRounds
+// rounds have run.
 //
 // Inputs:  g geometry, bg background mesh (refined in place), p parameters, diagonal
 // Output:  the initial size map on the refined background (not yet smoothed).
@@ -31,6 +37,7 @@ struct RefineStats {
 
 // The factor by which the graded midpoint size must exceed the linear one.
 constexpr double kRefineGain = 2.0;
+constexpr double kCurvatureMiss = 1.25;
 constexpr int kRefineMaxRounds = 8;
 
 SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
