@@ -89,3 +89,38 @@ TEST_CASE("away from small holes in a large flat face the size grows at the grad
   CHECK(refined >= 0.5 * graded);
   CHECK(plain < 0.5 * graded);  // the tessellation alone keeps the hole's size far out
 }
+
+TEST_CASE("refinement finds a curvature peak the tessellation stepped over") {
+  // Face 63 of the d150 fuselage bends to a radius of about 453 mm between
+  // background vertices that all see 1250 mm or more.
+  Model model = load_model(test::model_path("d150_fuselage.igs"));
+  const int face = 63;
+  auto smallest_radius = [&](const FacePatch& patch) {
+    double k_max = 0;
+    for (const Vec2& uv : patch.uv) {
+      double k = 0;
+      if (model.max_curvature(face, uv, k)) k_max = std::max(k_max, k);
+    }
+    return 1 / k_max;
+  };
+  double k_true = 0;  // the face's own smallest radius, on a fine uv grid
+  const UVBox box = model.face_uv_bounds(face);
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200; ++j) {
+      const Vec2 uv = box.lo + Vec2(i / 200.0 * (box.hi - box.lo).x(), j / 200.0 * (box.hi - box.lo).y());
+      double k = 0;
+      if (model.max_curvature(face, uv, k)) k_true = std::max(k_true, k);
+    }
+  const double r_true = 1 / k_true;
+  BackgroundMesh bg = build_background_mesh(model);
+  const double r_tessellation = smallest_radius(bg.patches[face - 1]);
+  SizingParams p;  // a deviation bound, as a user asking for an accurate surface would give
+  const double diag = model.info().diagonal();
+  p.h_min = diag / 1e4;
+  p.deviation = 2.5e-5 * diag;
+  refine_background(model, bg, p, diag);
+  const double r_refined = smallest_radius(bg.patches[face - 1]);
+  INFO("true " << r_true << ", tessellation " << r_tessellation << ", refined " << r_refined);
+  CHECK(r_tessellation > 2 * r_true);
+  CHECK(r_refined <= 1.1 * r_true);
+}
