@@ -13,7 +13,7 @@ ratios against Gmsh. Never fails on numbers.
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
-with phi_c = 30; Netgen 6.2 ignores its meshing parameters on OCC geometry
+with phi_c = 30, and with 90 at the coarse bounds; Netgen 6.2 ignores its meshing parameters on OCC geometry
 from Python, so it gives one point), and for every sizemesh mesh the triangles a
 peer needs for the same maximum centroid distance are interpolated (log-log)
 between that peer's two bracketing meshes. A ratio below 1 means sizemesh
@@ -100,7 +100,8 @@ def tool_command(a, tool, name, path, out, info, level):
         cmd = [os.path.join(a.build, "sizemesh"), path, "-o", out, "-q", "--threads", "1", "--h-min", repr(hmin),
                "--h-max", repr(hmax)]
         if a.sweep:
-            cmd += ["--phi-c", "30", "--deviation", repr(level * diag)]
+            deviation, phi = level if isinstance(level, tuple) else (level, 30)
+            cmd += ["--phi-c", str(phi), "--deviation", repr(deviation * diag)]
             if tool == "sizemesh-fidelity":
                 cmd += ["--no-proximity", "--beta", "1.5"]
         else:
@@ -143,7 +144,10 @@ def sweep(a):
     # Netgen 6.2 from Python ignores the meshing parameters of an OCC geometry
     # (its mesh is the same for every curvature safety and maxh tried), so it
     # gives one point per model.
-    levels = {"sizemesh": [3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+    # sizemesh: deviation bounds with phi_c = 30; the coarse ones also with phi_c = 90
+    # (at a coarse deviation, 30 degrees per element across small fillets sets the floor).
+    levels = {"sizemesh": [(3.2e-3, 90), (1.6e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5,
+                           2.5e-5],
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
@@ -158,7 +162,7 @@ def sweep(a):
         info = model_info(a.build, path)
         for tool in tools:
             for level in levels[tool]:
-                tag = "%g" % level
+                tag = "%g" % level if not isinstance(level, tuple) else "%g_phi%g" % level
                 out = os.path.join(tmp, "%s_%s_%s.msh" % (name, tool, tag))
                 wall, err = run(tool_command(a, tool, name, path, out, info, level), a.timeout)
                 m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
