@@ -40,13 +40,17 @@ SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingPar
     for (int e = 0; e < static_cast<int>(bg.edges.size()); ++e) {
       const auto [a, b] = bg.edges[e];
       const double l = (bg.xyz[a] - bg.xyz[b]).norm();
-      const double linear = 0.5 * (h[a] + h[b]);
-      const double graded = std::min(m.h_max, std::min(h[a], h[b]) + m.edge_log_beta[e] * 0.5 * l);
-      if (!(graded > kRefineGain * linear) && !(m.h_min * kCurvatureMiss < linear)) continue;
+      const double lo = std::min(h[a], h[b]), hi = std::max(h[a], h[b]);
+      const double linear = 0.5 * (lo + hi);
+      // Graded against linear at the middle, and a quarter of the way from the
+      // smaller end: with the far end at h_max the middle can never gain 2x.
+      double gain = 0;
+      for (double x : {0.25, 0.5})
+        gain = std::max(gain, std::min(m.h_max, lo + m.edge_log_beta[e] * x * l) / (lo + x * (hi - lo)));
+      if (!(gain > kRefineGain) && !(m.h_min * kCurvatureMiss < linear)) continue;
       const double curved = midpoint_curvature_size(g, bg, p, a, b);
       // Room to grow that the curvature there allows, or a curvature the ends miss.
-      if ((graded > kRefineGain * linear && curved > kRefineGain * linear) ||
-          std::max(curved, m.h_min) * kCurvatureMiss < linear)
+      if ((gain > kRefineGain && curved > kRefineGain * linear) || std::max(curved, m.h_min) * kCurvatureMiss < linear)
         split.push_back(e);
     }
     // A curvature peak inside a triangle: its longest edge is split.

@@ -8,7 +8,9 @@
 // vertex is there to hold the larger size, so the whole face is meshed at the
 // feature's size. This splits every background edge (inside faces and along
 // curves) whose graded size at its midpoint, min(h_a, h_b) + ln(beta) l / 2
-// capped by h_max, exceeds the linear interpolation (h_a + h_b) / 2 by more than
+// capped by h_max, or a quarter of the way from its smaller end (an edge
+// reaching h_max can never gain 2x at the middle), exceeds the linear
+// interpolation there by more than
 // the factor kRefineGain (where the curvature at the midpoint allows it), and every
 // edge whose midpoint curvature size, or triangle (its longest edge) whose
 // curvature size at its centroid or halfway to a corner, is below the linear
