@@ -23,11 +23,6 @@
 namespace sizemesh {
 namespace {
 
-uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
-}
-
 // A curve's chain of global vertices with the curve parameter of each.
 struct Chain {
   std::vector<int> vertex;
@@ -264,6 +259,13 @@ std::vector<int> BackgroundMesh::edge_valence() const {
   for (const auto& te : tri_edges)
     for (int e : te) ++val[e];
   return val;
+}
+
+std::unordered_map<uint64_t, int> BackgroundMesh::edge_index() const {
+  std::unordered_map<uint64_t, int> index;
+  index.reserve(edges.size() * 2);
+  for (size_t e = 0; e < edges.size(); ++e) index.emplace(edge_key(edges[e][0], edges[e][1]), static_cast<int>(e));
+  return index;
 }
 
 void BackgroundMesh::vertex_edges(std::vector<int>& start, std::vector<int>& ids) const {

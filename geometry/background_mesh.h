@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "geometry/types.h"
@@ -16,6 +17,12 @@ namespace sizemesh {
 
 class Geometry;
 class Model;
+
+// Key of the undirected edge (a, b), for hash maps of edges.
+inline uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+}
 
 // One face's triangulation in its own parameter space.
 struct FacePatch {
@@ -53,6 +60,8 @@ struct BackgroundMesh {
   std::vector<int> edge_valence() const;
   // Vertex -> incident edge ids, CSR form.
   void vertex_edges(std::vector<int>& start, std::vector<int>& edge_ids) const;
+  // edge_key(a, b) -> edge id, for every edge.
+  std::unordered_map<uint64_t, int> edge_index() const;
 };
 
 struct BackgroundOptions {

@@ -12,11 +12,6 @@
 namespace sizemesh {
 namespace {
 
-uint64_t pair_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
-}
-
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Parameter of vertex v on curve c; `other` is the edge's other end (to pick
@@ -62,11 +57,9 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
   std::vector<char> marked(ne, 0);
   for (int e : edges)
     if (e >= 0 && e < ne) marked[e] = 1;
-  std::unordered_map<uint64_t, int> edge_of;
-  edge_of.reserve(ne * 2);
-  for (int e = 0; e < ne; ++e) edge_of.emplace(pair_key(bg.edges[e][0], bg.edges[e][1]), e);
+  const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   auto edge_id = [&](int a, int b) {
-    auto it = edge_of.find(pair_key(a, b));
+    auto it = edge_of.find(edge_key(a, b));
     return it == edge_of.end() ? -1 : it->second;
   };
 
@@ -138,7 +131,7 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
         const int la = tr[k], lb = tr[(k + 1) % 3];
         const int e = edge_id(patch.vertex[la], patch.vertex[lb]);
         if (e < 0 || !marked[e]) continue;
-        auto [it, fresh] = local_mid.emplace(pair_key(la, lb), static_cast<int>(patch.vertex.size()));
+        auto [it, fresh] = local_mid.emplace(edge_key(la, lb), static_cast<int>(patch.vertex.size()));
         if (fresh) {
           const Vec2 chord_mid = 0.5 * (patch.uv[la] + patch.uv[lb]);
           if (bg.edge_curve[e]) {

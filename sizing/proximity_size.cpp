@@ -16,14 +16,6 @@ double face_mu(const SizingParams& p, int face) {
   auto it = p.face_mu_d.find(face);
   return it == p.face_mu_d.end() ? p.mu_d : it->second;
 }
-}  // namespace
-
-namespace {
-
-uint64_t pair_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
-}
 
 // The width of one face across itself at each of its boundary vertices: from
 // the vertex, rays in uv along the inward normals (perpendicular in space to
@@ -45,11 +37,11 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
       const int a = patch.tris[t][(k + 1) % 3], b = patch.tris[t][(k + 2) % 3];
       const int ga = patch.vertex[a], gb = patch.vertex[b];
       if (ga == gb) continue;  // collapsed onto a pole
-      auto it = edge_of.find(pair_key(ga, gb));
+      auto it = edge_of.find(edge_key(ga, gb));
       border.push_back({a, b, it == edge_of.end() ? 0 : bg.edge_curve[it->second]});
-      ++seen[pair_key(ga, gb)];
+      ++seen[edge_key(ga, gb)];
     }
-  auto is_seam = [&](const BEdge& e) { return seen[pair_key(patch.vertex[e.a], patch.vertex[e.b])] > 1; };
+  auto is_seam = [&](const BEdge& e) { return seen[edge_key(patch.vertex[e.a], patch.vertex[e.b])] > 1; };
   std::vector<char> seam(border.size());
   for (size_t i = 0; i < border.size(); ++i) seam[i] = is_seam(border[i]);
   // B-rep points that end the curve a vertex lies on (or the point itself).
@@ -108,10 +100,7 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
 // vertex (equal to 2 A / l on a strip); the smallest over a vertex's faces.
 // Inner vertices get no face-proximity bound: gradation carries it inwards.
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
-  std::unordered_map<uint64_t, int> edge_of;
-  edge_of.reserve(bg.edges.size() * 2);
-  for (size_t e = 0; e < bg.edges.size(); ++e)
-    if (bg.edge_curve[e]) edge_of.emplace(pair_key(bg.edges[e][0], bg.edges[e][1]), static_cast<int>(e));
+  const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
   tbb::parallel_for(0, static_cast<int>(bg.patches.size()), [&](int i) {
     if (!bg.patches[i].tris.empty()) face_widths(g, bg, bg.patches[i], edge_of, widths[i]);
