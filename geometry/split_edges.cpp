@@ -75,17 +75,20 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
     else marked[e] = 0;
   }
   for (const FacePatch& patch : bg.patches)
+    for (size_t t = 0; t < patch.tris.size(); ++t)
+      if (patch.global_tri[t] < 0)
+        for (int k = 0; k < 3; ++k) {
+          const int e = edge_id(patch.vertex[patch.tris[t][k]], patch.vertex[patch.tris[t][(k + 1) % 3]]);
+          if (e >= 0) marked[e] = 0;
+        }
+  for (const FacePatch& patch : bg.patches)
     for (size_t t = 0; t < patch.tris.size(); ++t) {
+      if (patch.global_tri[t] < 0) continue;
       const auto& tr = patch.tris[t];
       for (int k = 0; k < 3; ++k) {
         const int la = tr[k], lb = tr[(k + 1) % 3], lo = tr[(k + 2) % 3];
         const int e = edge_id(patch.vertex[la], patch.vertex[lb]);
-        if (e < 0 || !marked[e]) continue;
-        if (patch.global_tri[t] < 0) {
-          marked[e] = 0;
-          continue;
-        }
-        if (!bg.edge_curve[e]) continue;
+        if (e < 0 || !marked[e] || !bg.edge_curve[e]) continue;
         // The new uv must stay well inside the triangle's side of the chord.
         const Vec2 chord = patch.uv[lb] - patch.uv[la];
         const Vec2 m = pcurve_uv(g, bg.edge_curve[e], patch.face, mid_t[e], 0.5 * (patch.uv[la] + patch.uv[lb]));
@@ -95,13 +98,6 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
           marked[e] = 0;
       }
     }
-  for (const FacePatch& patch : bg.patches)  // a pole triangle's edges may be seen after their split was allowed
-    for (size_t t = 0; t < patch.tris.size(); ++t)
-      if (patch.global_tri[t] < 0)
-        for (int k = 0; k < 3; ++k) {
-          const int e = edge_id(patch.vertex[patch.tris[t][k]], patch.vertex[patch.tris[t][(k + 1) % 3]]);
-          if (e >= 0) marked[e] = 0;
-        }
 
   auto add_vertex = [&](const Vec3& p, int dim, int entity, double t) {
     bg.xyz.push_back(p);
