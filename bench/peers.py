@@ -195,7 +195,7 @@ def sweep(a):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--models", default=os.path.join(ROOT, "..", "shared", "models"))
+    ap.add_argument("--models", default=os.path.join(ROOT, "tests", "data"))
     ap.add_argument("--phi", type=float, nargs="+", default=[10.0, 5.0])
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--only", nargs="*")

@@ -1,4 +1,4 @@
-// Shared test helpers: the development models and small shapes built with OCCT.
+// The test models (tests/data, see SOURCES.md there) and where to find them.
 #pragma once
 
 #include <string>
@@ -16,7 +16,8 @@ inline const std::vector<SharedModel>& shared_models() {
       {"onera_m6_wing.stp", true},          {"cone70_capsule_sting.step", true},
       {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
       {"cylinder_head_fins.stp", true},     {"steering_knuckle.stp", true},
-      {"d150_fuselage.igs", true},          {"f16_openvsp.stp", false}};
+      {"d150_fuselage.igs", true},          {"f16_openvsp.stp", false},
+      {"manta2_openvsp.stp", false}};
   return models;
 }
 
