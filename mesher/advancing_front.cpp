@@ -12,6 +12,8 @@
 namespace sizemesh {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct FrontEdge {
   int a, b;
   bool alive = true;
@@ -62,7 +64,8 @@ constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
 
 class Front {
  public:
-  Front(FaceMesh& fm, FaceSurface& fs, int strategy) : fm_(fm), fs_(fs), levels_(kStrategies[strategy]) {}
+  Front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps)
+      : fm_(fm), fs_(fs), levels_(kStrategies[strategy]), max_steps_(max_steps) {}
 
   FrontResult run() {
     FrontResult r;
@@ -91,16 +94,17 @@ class Front {
         }
       }
 
-    long long failed = 0;
-    const long long max_failed = 20LL * n_edges + 2000;
-    const size_t max_tris = 20000000;
     while (!heap_.empty()) {
       const auto [key, ei] = heap_.top();
       heap_.pop();
       FrontEdge& e = edges_[ei];
       if (!e.alive || e.key != key) continue;
+      if (++steps_ > max_steps_) {
+        r.reason = "the advancing front spent its work budget of " + std::to_string(max_steps_) + " steps (" +
+                   std::to_string(alive_) + " front edges left)";
+        return fail(r);
+      }
       if (advance(ei, levels_[e.tries])) continue;
-      ++failed;
       FrontEdge& e2 = edges_[ei];
       if (++e2.tries >= kMaxTries) {
         r.reason = "front could not advance from an edge after " + std::to_string(kMaxTries) +
@@ -109,20 +113,17 @@ class Front {
       }
       e2.key += 1.0 + e2.tries;  // try the rest of the front first
       heap_.push({e2.key, ei});
-      if (failed > max_failed || fm_.tris.size() > max_tris) {
-        r.reason = "advancing front hit its iteration cap (" + std::to_string(alive_) +
-                   " front edges left)";
-        return fail(r);
-      }
     }
     r.ok = alive_ == 0;
     if (!r.ok) r.reason = "front left open";
     r.fronts_3d = fronts_3d_;
+    r.steps = steps_;
     return r;
   }
 
   FrontResult& fail(FrontResult& r) const {
     r.fronts_3d = fronts_3d_;
+    r.steps = steps_;
     for (const FrontEdge& e : edges_)
       if (e.alive) r.open_edges.push_back({e.a, e.b});
     return r;
@@ -195,6 +196,10 @@ class Front {
     const Vec2& ua = fm_.uv[a];
     const Vec2& ub = fm_.uv[b];
     const Vec2& uc = c.uv;
+    // A front neighbour taken as apex may lie outside the gathered box: the
+    // front its new edges could cross is gathered first.
+    if ((uc.array() < box_lo_.array()).any() || (uc.array() > box_hi_.array()).any())
+      gather(box_lo_.cwiseMin(uc), box_hi_.cwiseMax(uc));
     const double o = orient(ua, ub, uc);
     const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
     if (!(o > 1e-10 * scale)) return -1;
@@ -205,6 +210,12 @@ class Front {
       if ((gc == fm_.global[a] && !pole_pair(a, c.node)) || (gc == fm_.global[b] && !pole_pair(b, c.node)))
         return -8;
     }
+    // The triangle lies in the unmeshed region at each of its corners: an edge
+    // leaving a front node outside the node's open angle crosses no front edge
+    // yet escapes through the node (into the meshed part or out of the domain).
+    if (!within_open_angle(a, ub, uc) || !within_open_angle(b, uc, ua) ||
+        (c.node >= 0 && !within_open_angle(c.node, ua, ub)))
+      return -10;
     // New edges must cross no front edge.
     const bool new_ac = c.node < 0 || find_edge(c.node, a) < 0;
     const bool new_cb = c.node < 0 || find_edge(b, c.node) < 0;
@@ -259,6 +270,37 @@ class Front {
       if (nc.squaredNorm() > 0 && nt.dot(nc) <= std::max(lv.cos_min, 0.0) * lt) return -9;
     }
     return q;
+  }
+
+  // Counter-clockwise angle from direction u to direction v, in [0, 2 pi).
+  static double ccw_angle(const Vec2& u, const Vec2& v) {
+    const double t = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+    return t < 0 ? t + 2 * kPi : t;
+  }
+  // The new triangle's corner at front node k spans counter-clockwise from
+  // direction k->x to k->y (uv; any orientation-preserving map keeps the
+  // order, so the metric need not enter). It must lie in an open angle of the
+  // front at k: from an outgoing front edge k->n counter-clockwise to an
+  // incoming one p->k (the unmeshed side is on the front's left). A node the
+  // front touches more than once has several such angles; one must hold it.
+  bool within_open_angle(int k, const Vec2& x, const Vec2& y) const {
+    const Vec2& uk = fm_.uv[k];
+    const Vec2 dx = x - uk, dy = y - uk;
+    constexpr double eps = 1e-9;  // collinear directions (closing a loop) pass
+    bool touched = false;
+    for (int eo : near_edges_) {
+      if (!edges_[eo].alive || edges_[eo].a != k) continue;
+      const Vec2 dn = fm_.uv[edges_[eo].b] - uk;
+      for (int ei : near_edges_) {
+        if (!edges_[ei].alive || edges_[ei].b != k) continue;
+        touched = true;
+        const double open = ccw_angle(dn, fm_.uv[edges_[ei].a] - uk);
+        const double ax = ccw_angle(dn, dx), ay = ccw_angle(dn, dy);
+        const double ax0 = ax > 2 * kPi - eps ? 0.0 : ax;  // along k->n
+        if (ax0 <= ay + eps && ay <= open + eps) return true;
+      }
+    }
+    return !touched;  // no front edges seen at k: nothing to test against
   }
 
   // Point x within a small fraction of the segment's length of segment pq (space).
@@ -442,6 +484,8 @@ class Front {
 
   // Alive front edges and their nodes with boxes meeting [lo, hi].
   void gather(const Vec2& lo, const Vec2& hi) {
+    box_lo_ = lo;
+    box_hi_ = hi;
     ++visit_;
     near_edges_.clear();
     near_nodes_.clear();
@@ -462,6 +506,8 @@ class Front {
   FaceMesh& fm_;
   FaceSurface& fs_;
   const Level* levels_;
+  long long max_steps_;  // tries at front edges, successful or not
+  long long steps_ = 0;
   std::vector<FrontEdge> edges_;
   std::vector<unsigned> stamp_, node_stamp_;
   unsigned visit_ = 0;
@@ -472,6 +518,7 @@ class Front {
   EdgeGrid grid_;
   size_t grid_edges_ = 0;  // edges when the grid was last built
   Vec2 lo_, hi_;
+  Vec2 box_lo_, box_hi_;  // the box gather() last covered
   int alive_ = 0;
   int fronts_3d_ = 0;
   std::vector<int> near_edges_, near_nodes_;
@@ -479,8 +526,16 @@ class Front {
 
 }  // namespace
 
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy) {
-  Front front(fm, fs, std::clamp(strategy, 0, kStrategyCount - 1));
+long long front_step_budget(double expected_triangles, int boundary_nodes) {
+  const double n = boundary_nodes;
+  // With no estimate (a face without background triangles) a disc bounded by
+  // n nodes holds about n^2 / 5 triangles.
+  const double expected = expected_triangles > 0 ? expected_triangles : 0.2 * n * n;
+  return static_cast<long long>(std::min(4.0 * expected + 10.0 * n + 1000.0, 4e9));
+}
+
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps) {
+  Front front(fm, fs, std::clamp(strategy, 0, kStrategyCount - 1), max_steps);
   return front.run();
 }
 

@@ -17,7 +17,8 @@
 // Input:  fm with boundary nodes and loops (face_boundary()), fs its sampler.
 // Output: fm.tris (counter-clockwise in uv) and the nodes created inside the
 //         face; FrontResult says whether the front closed and, if not, why.
-// Terminates on every input: failed attempts are capped.
+// Terminates on every input: at most max_steps tries at front edges (a
+// successful step adds one triangle), then the front stops and reports it.
 // Retrying a failed face with a later strategy (from the same boundary) is the caller's choice.
 #pragma once
 
@@ -34,10 +35,15 @@ struct FrontResult {
   std::string reason;
   int fronts_3d = 0;  // ideal points computed in space (Tremel procedure 1)
   std::vector<std::array<int, 2>> open_edges;  // front left when it failed
+  long long steps = 0;                          // tries at front edges
 };
 
 // Strategies 0 .. kStrategyCount-1, from the best shapes to the most robust.
 constexpr int kStrategyCount = 4;
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy = 0);
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps);
+
+// The step budget of a face: a few times the triangles its size map asks for
+// (sizing/triangle_estimate.h), plus room for the boundary and a constant.
+long long front_step_budget(double expected_triangles, int boundary_nodes);
 
 }  // namespace sizemesh
