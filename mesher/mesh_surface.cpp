@@ -9,6 +9,7 @@
 #include "mesher/advancing_front.h"
 #include "mesher/discretise_curves.h"
 #include "mesher/face_boundary.h"
+#include "mesher/fill_front.h"
 #include "mesher/optimise.h"
 
 namespace sizemesh {
@@ -19,6 +20,11 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Leftover fronts closed by ear clipping: small ones after any strategy,
+// larger ones only to avoid a hole after the last.
+constexpr int kSmallLeftover = 64;
+constexpr int kLargeLeftover = 5000;
+
 struct FaceResult {
   FaceMesh mesh;
   bool ok = false;
@@ -26,6 +32,8 @@ struct FaceResult {
   long long size_queries = 0;
   int fronts_3d = 0;
   int strategy = 0;  // front strategy that closed the face
+  long long front_steps = 0;
+  bool filled = false;  // the front's leftover was closed by ear clipping
   double seconds_front = 0, seconds_optimise = 0;
 };
 
@@ -37,12 +45,25 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   try {
     const auto t0 = Clock::now();
     const FaceMesh boundary = face_boundary(g, cm, fs);
+    const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;
+    const long long budget = front_step_budget(expected, boundary.num_nodes());
     FrontResult fr;
     for (int strategy = 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
       r.mesh = boundary;
-      fr = advancing_front(r.mesh, fs, strategy);
+      fr = advancing_front(r.mesh, fs, strategy, budget);
+      r.front_steps += fr.steps;
       r.fronts_3d += fr.fronts_3d;
       r.strategy = strategy;
+      // A few edges the front could not advance from: close them in place.
+      if (!fr.ok && fill_front(r.mesh, fr.open_edges, false, kSmallLeftover)) {
+        fr.ok = true;
+        r.filled = true;
+      }
+    }
+    // Last resort before a hole: close the last strategy's leftover with any ears valid in uv.
+    if (!fr.ok && fill_front(r.mesh, fr.open_edges, false, kLargeLeftover)) {
+      fr.ok = true;
+      r.filled = true;
     }
     r.seconds_front = seconds_since(t0);
     if (!fr.ok) {
@@ -94,8 +115,10 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
     FaceResult& r = faces[f];
     out.stats.size_queries += r.size_queries;
     out.stats.fronts_3d += r.fronts_3d;
+    out.stats.front_steps += r.front_steps;
     out.stats.faces_retried += r.strategy > 0;
     out.stats.faces_relaxed += r.strategy >= 2;
+    out.stats.faces_filled += r.filled;
     out.stats.seconds_front += r.seconds_front;
     out.stats.seconds_optimise += r.seconds_optimise;
     if (!r.ok) {

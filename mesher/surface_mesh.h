@@ -28,8 +28,10 @@ struct MeshStats {
   double seconds_optimise = 0;  // summed over faces: swaps and smoothing
   long long size_queries = 0;   // calls of SizeFunction::at / at_xyz
   int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
+  long long front_steps = 0;    // tries at front edges, over every face and strategy
   int faces_retried = 0;        // faces whose front got stuck and were meshed again
   int faces_relaxed = 0;        // of those, faces that needed the last-resort strategies
+  int faces_filled = 0;         // faces whose front's leftover was closed by ear clipping
 };
 
 struct SurfaceMesh {
@@ -53,6 +55,9 @@ struct SurfaceMesh {
 struct MeshOptions {
   int threads = 0;           // 0: all hardware threads
   int optimise_passes = 3;   // swap + smoothing passes per face
+  // Triangles the size map asks for per face (index face id; sizing/triangle_estimate.h):
+  // the face mesher's work budget. Empty: budgets from the boundary alone.
+  std::vector<double> expected_triangles;
 };
 
 }  // namespace sizemesh

@@ -87,6 +87,8 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   if (h_min > h_max) throw Error("h_min (" + num(h_min) + ") is larger than h_max (" + num(h_max) + ")");
   if (!(p.deviation >= 0) || !std::isfinite(p.deviation))
     throw Error("deviation must be zero (none) or positive, got " + num(p.deviation));
+  if (!(p.max_triangles >= 1) || !std::isfinite(p.max_triangles))
+    throw Error("max_triangles must be at least 1, got " + num(p.max_triangles));
   for (const auto& [id, v] : p.curve_phi_c_deg) check_phi(v, "curve " + std::to_string(id) + ": ");
   for (const auto& [id, v] : p.face_phi_c_deg) check_phi(v, "face " + std::to_string(id) + ": ");
   for (const auto& [id, v] : p.face_mu_d) check_mu(v, "face " + std::to_string(id) + ": ");
@@ -114,7 +116,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   static const std::set<std::string> known = {"phi_c",      "mu_d",      "beta",      "h_min",   "h_max",
-                                              "deviation", "proximity", "local_proximity", "refine_background", "curve_phi_c", "face_phi_c", "face_mu_d",
+                                              "deviation", "proximity", "local_proximity", "refine_background", "max_triangles", "curve_phi_c", "face_phi_c", "face_mu_d",
                                               "face_beta",  "point_size", "curve_size", "face_size"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -124,6 +126,7 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("h_min")) p.h_min = number(j["h_min"], "h_min");
   if (j.contains("h_max")) p.h_max = number(j["h_max"], "h_max");
   if (j.contains("deviation")) p.deviation = number(j["deviation"], "deviation");
+  if (j.contains("max_triangles")) p.max_triangles = number(j["max_triangles"], "max_triangles");
   for (auto [key, flag] : {std::pair{"proximity", &p.proximity}, {"local_proximity", &p.local_proximity},
                            {"refine_background", &p.refine_background}})
     if (j.contains(key)) {

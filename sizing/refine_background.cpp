@@ -5,6 +5,7 @@
 #include "sizing/curvature_size.h"
 #include "sizing/initial_sizes.h"
 #include "sizing/smooth.h"
+#include "sizing/triangle_estimate.h"
 
 namespace sizemesh {
 namespace {
@@ -36,6 +37,9 @@ SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingPar
   for (int round = 0; round < kRefineMaxRounds && p.refine_background; ++round) {
     std::vector<double> h = m.h_initial;
     smooth_edges(bg, m.edge_log_beta, h);  // Eq. 12: what gradation leaves at the vertices
+    // A map already asking for more triangles than the budget will be refused:
+    // refining it further is work for nothing.
+    if (estimate_triangles(bg, h, {}, g.num_faces()).total > p.max_triangles) break;
     std::vector<int> split;
     for (int e = 0; e < static_cast<int>(bg.edges.size()); ++e) {
       const auto [a, b] = bg.edges[e];

@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-refine-background", o.sizing.refine_background,
                "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow")
       ->group(sizing);
+  app.add_option("--max-triangles", o.sizing.max_triangles,
+                 "refuse, before meshing, a size map that asks for more triangles (an estimate from the map)")
+      ->capture_default_str()->check(CLI::Range(1.0, 1e15))->group(sizing);
   app.add_option("--config", o.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json)")->group(sizing);

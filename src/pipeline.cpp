@@ -1,12 +1,15 @@
 #include "src/pipeline.h"
 
 #include <chrono>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
+#include "sizing/triangle_estimate.h"
 #include "src/background_output.h"
 #include "src/mesh_output.h"
 #include "src/report.h"
@@ -32,6 +35,27 @@ class Stopwatch {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
+// Refuses a size map that asks for more triangles than the user allows,
+// naming the option that drives the count.
+void check_triangle_budget(const TriangleEstimate& e, double max_triangles, const SizeMap& h) {
+  if (e.total <= max_triangles) return;
+  const char* option = "--h-min";
+  switch (e.dominant()) {
+    case Limit::HMax: option = "--h-max"; break;
+    case Limit::Curvature: option = "--phi-c or --deviation"; break;
+    case Limit::FaceProximity:
+    case Limit::CurveLength:
+    case Limit::Gap: option = "--mu-d, --no-gaps or --h-min"; break;
+    case Limit::User: option = "the config's local sizes"; break;
+    case Limit::HMin: option = "--h-min"; break;
+  }
+  std::ostringstream msg;
+  msg << std::setprecision(3) << "the size map asks for about " << e.total << " triangles, more than --max-triangles "
+      << max_triangles << " (h_min " << h.h_min << ", h_max " << h.h_max << "); most come from sizes set by "
+      << limit_name(e.dominant()) << ": raise " << option << ", or --max-triangles";
+  throw Error(msg.str());
+}
+
 }  // namespace
 
 int run(const RunOptions& o) {
@@ -53,6 +77,8 @@ int run(const RunOptions& o) {
   clock.lap("initial_sizes");
   report.smoothing = smooth(bg, h, o.edge_solver);                             // sizing/   (3.3, Eq. 11-12)
   clock.lap("smoothing");
+  const TriangleEstimate estimate = estimate_triangles(bg, h.h, h.limit, model.num_faces());  // sizing/
+  report.estimated_triangles = estimate.total;
   report.model = &model;
   report.background_triangles = bg.num_triangles();
   report.background_vertices = bg.num_vertices();
@@ -63,13 +89,18 @@ int run(const RunOptions& o) {
               << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
               << " edges split in " << report.refinement.rounds << " rounds)\n";
     print_sizing_summary(bg, h, report.smoothing, std::cout);
+    std::cout << "estimate: about " << static_cast<long long>(estimate.total + 0.5) << " triangles\n";
   }
   if (!o.background.empty()) write_background_sizes(o.background, bg, h);
+  if (!o.output.empty()) check_triangle_budget(estimate, params.max_triangles, h);
+
 
   SurfaceMesh mesh;
   if (!o.output.empty()) {
     const SizeQuery query = size_query_for(model, bg, h.h);  // sizing/ (4.2)
-    mesh = mesh_surface(model, query, o.meshing);                           // mesher/ (4.1)
+    MeshOptions meshing = o.meshing;
+    meshing.expected_triangles = estimate.per_face;
+    mesh = mesh_surface(model, query, meshing);                             // mesher/ (4.1)
     clock.lap("meshing");
     report.queries = query.stats();
     report.mesh = &mesh;

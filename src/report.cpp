@@ -58,6 +58,13 @@ nlohmann::json report_json(const RunReport& r) {
                  {"max_inner_node_distance", q.max_inner_node_distance},
                  {"max_node_distance", q.max_node_distance},
                  {"failed_faces", failures}};
+    const MeshStats& st = r.mesh->stats;
+    j["mesher"] = {{"estimated_triangles", r.estimated_triangles},
+                   {"front_steps", st.front_steps},
+                   {"front_steps_per_triangle", st.front_steps / n},
+                   {"faces_retried", st.faces_retried},
+                   {"faces_relaxed", st.faces_relaxed},
+                   {"faces_filled", st.faces_filled}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},

@@ -23,6 +23,7 @@ namespace sizemesh {
 struct RunReport {
   const Model* model = nullptr;
   int background_triangles = 0, background_vertices = 0;
+  double estimated_triangles = 0;  // from the size map, before meshing
   const SizeMap* sizes = nullptr;
   RefineStats refinement;
   SmoothStats smoothing;

@@ -1,0 +1,30 @@
+// Closes what an advancing front left open (beyond the paper): when the front
+// cannot advance from a few edges, the region it still bounds is triangulated
+// by ear clipping in uv instead of meshing the whole face again.
+//
+// Each remaining loop of front edges (uv, unmeshed side on the left) is cut
+// into triangles, the best-shaped valid ear first. An ear is valid when it is
+// counter-clockwise in uv, holds no other loop node, and does not join two uv
+// images of one node in space (a seam). In strict mode it must also face the
+// way of the surface normal at its corners (never an inverted triangle).
+//
+// Inputs:
+//   fm          the face's mesh with the front's triangles so far
+//   open_edges  front edges left open (FrontResult::open_edges)
+//   strict      refuse ears that turn against the surface normal
+//   max_edges   larger leftovers are not filled (ears alone make poor triangles)
+// Output: true and the new triangles appended to fm.tris when every loop was
+// closed; false and fm unchanged otherwise (loops that touch themselves, a
+// loop bounding a hole, more than max_edges edges, or no valid ear).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mesher/face_mesh.h"
+
+namespace sizemesh {
+
+bool fill_front(FaceMesh& fm, const std::vector<std::array<int, 2>>& open_edges, bool strict, int max_edges);
+
+}  // namespace sizemesh
