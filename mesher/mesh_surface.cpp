@@ -1,5 +1,6 @@
 #include "mesher/mesh_surface.h"
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 
@@ -104,7 +105,11 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
   t0 = Clock::now();
   const int nf = g.num_faces();
   std::vector<FaceResult> faces(nf + 1);
-  tbb::parallel_for(1, nf + 1, [&](int f) { faces[f] = mesh_face(g, h, cm, f, o); });
+  std::atomic<int> done{0};
+  tbb::parallel_for(1, nf + 1, [&](int f) {
+    faces[f] = mesh_face(g, h, cm, f, o);
+    if (o.on_face_done) o.on_face_done(++done, nf);
+  });
   out.stats.seconds_faces = seconds_since(t0);
 
   // 3. Assembly in face order: shared nodes by index, inner nodes appended.

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,6 +59,8 @@ struct MeshOptions {
   // Triangles the size map asks for per face (index face id; sizing/triangle_estimate.h):
   // the face mesher's work budget. Empty: budgets from the boundary alone.
   std::vector<double> expected_triangles;
+  // Called after each face with (faces done, faces in all), from any thread.
+  std::function<void(int, int)> on_face_done;
 };
 
 }  // namespace sizemesh

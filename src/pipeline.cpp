@@ -1,6 +1,5 @@
 #include "src/pipeline.h"
 
-#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "sizing/triangle_estimate.h"
 #include "src/background_output.h"
 #include "src/mesh_output.h"
+#include "src/progress.h"
 #include "src/report.h"
 #include "src/sizing_report.h"
 #include "src/vtu_writer.h"
@@ -19,21 +19,6 @@
 namespace sizemesh {
 
 namespace {
-
-// Records the wall time of each named stage.
-class Stopwatch {
- public:
-  explicit Stopwatch(RunReport& r) : r_(r) {}
-  void lap(const std::string& stage) {
-    const auto t = std::chrono::steady_clock::now();
-    r_.seconds.emplace_back(stage, std::chrono::duration<double>(t - t0_).count());
-    t0_ = t;
-  }
-
- private:
-  RunReport& r_;
-  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
-};
 
 // Refuses a size map that asks for more triangles than the user allows,
 // naming the option that drives the count.
@@ -67,7 +52,7 @@ int run(const RunOptions& o) {
   if (!o.config.empty()) read_config(o.config, params);
 
   RunReport report;
-  Stopwatch clock(report);
+  Progress clock(o.verbose, report.seconds);
   Model model = load_model(o.input, o.load);                                   // geometry/
   clock.lap("load");
   BackgroundMesh bg = build_background_mesh(model, o.tessellation);            // geometry/ (paper 3.1)
@@ -100,6 +85,7 @@ int run(const RunOptions& o) {
     const SizeQuery query = size_query_for(model, bg, h.h);  // sizing/ (4.2)
     MeshOptions meshing = o.meshing;
     meshing.expected_triangles = estimate.per_face;
+    meshing.on_face_done = [&clock](int done, int total) { clock.faces(done, total); };
     mesh = mesh_surface(model, query, meshing);                             // mesher/ (4.1)
     clock.lap("meshing");
     report.queries = query.stats();
