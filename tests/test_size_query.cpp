@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "tests/test_models.h"
+
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
@@ -64,14 +66,8 @@ Case make_case(const std::string& name, const Model& model) {
 // Every model in the shared directory, loaded once per test process.
 const std::vector<Case>& shared_cases() {
   static const std::vector<Case> cases = [] {
-    std::vector<std::string> paths;
-    for (const auto& e : std::filesystem::directory_iterator(SIZEMESH_MODELS_DIR)) {
-      const std::string ext = e.path().extension().string();
-      if (ext == ".stp" || ext == ".step" || ext == ".igs" || ext == ".iges") paths.push_back(e.path().string());
-    }
-    std::sort(paths.begin(), paths.end());
     std::vector<Case> out;
-    for (const auto& p : paths) out.push_back(make_case(std::filesystem::path(p).filename().string(), load_model(p)));
+    for (const auto& m : test::shared_models()) out.push_back(make_case(m.file, load_model(test::model_path(m.file))));
     return out;
   }();
   return cases;
@@ -147,7 +143,7 @@ FacePatch patch_from(int face, const std::vector<Vec2>& uv, const std::vector<st
 
 // One test case for the shared models, so that they are loaded once per run.
 TEST_CASE("on every shared model the walk-through search answers like brute force", "[size_query]") {
-  REQUIRE(shared_cases().size() == 8);
+  REQUIRE(shared_cases().size() == test::shared_models().size());
 
   SECTION("random points inside every face, from random hints and from none, give the brute-force answer") {
     std::mt19937 rng(12345);
