@@ -58,7 +58,12 @@ double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
   box.Get(x0, y0, z0, x1, y1, z1);
   lo = {x0, y0, z0};
   hi = {x1, y1, z1};
-  return (hi - lo).norm();
+  const double diag = (hi - lo).norm();
+  // Corrupt coordinates, or a model no mesh size can be derived from.
+  if (!std::isfinite(diag) || !(diag > 1e-9) || diag > 1e12)
+    throw Error("the model's bounding box is unusable (diagonal " + std::to_string(diag) +
+                " file units; valid models span 1e-9 to 1e12)");
+  return diag;
 }
 
 // Sewing returns shells; closed ones become solids again so the model keeps its volumes.

@@ -9,6 +9,8 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <OSD.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <STEPControl_Reader.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <TCollection_HAsciiString.hxx>
@@ -38,16 +40,46 @@ std::string lower(std::string s) {
   return s;
 }
 
-// OpenCASCADE prints progress and warnings to stdout; sizemesh speaks for itself.
-void silence_occt() {
+enum class Format { Step, Iges, Brep, Unknown };
+
+// OpenCASCADE prints progress and warnings to stdout; sizemesh speaks for
+// itself. Its readers can also fault on corrupt data: signals become
+// Standard_Failure inside OCC_CATCH_SIGNALS blocks.
+void prepare_occt() {
   static bool done = false;
   if (done) return;
   done = true;
   const Handle(Message_Messenger)& m = Message::DefaultMessenger();
   m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  OSD::SetSignal(false);
 }
 
-enum class Format { Step, Iges, Brep, Unknown };
+// The last bytes of a file, to see whether it ends as its format requires.
+std::string tail_of(const std::string& path, size_t n) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  const std::streamoff start = size > static_cast<std::streamoff>(n) ? size - static_cast<std::streamoff>(n) : 0;
+  in.seekg(start);
+  std::string t(static_cast<size_t>(size - start), '\0');
+  in.read(t.data(), static_cast<std::streamsize>(t.size()));
+  return t;
+}
+
+// A STEP file ends with END-ISO-10303-21; and an IGES file with its T
+// (terminate) record: without them the file was cut short.
+void check_complete(const std::string& path, Format f) {
+  if (f == Format::Step) {
+    if (tail_of(path, 4096).find("END-ISO-10303-21;") == std::string::npos)
+      throw Error("'" + path + "' is truncated: a STEP file ends with END-ISO-10303-21;");
+  } else if (f == Format::Iges) {
+    std::string t = tail_of(path, 512);
+    while (!t.empty() && (t.back() == '\n' || t.back() == '\r' || t.back() == ' ')) t.pop_back();
+    const size_t line = t.rfind('\n');
+    const std::string last = t.substr(line == std::string::npos ? 0 : line + 1);
+    if (last.size() < 73 || last[72] != 'T')
+      throw Error("'" + path + "' is truncated: an IGES file ends with its T (terminate) record");
+  }
+}
 
 Format format_from_content(const std::string& head) {
   if (head.find("ISO-10303-21") != std::string::npos) return Format::Step;
@@ -180,10 +212,11 @@ TopoDS_Shape read_brep(const std::string& path, ModelInfo& info) {
 }  // namespace
 
 Model load_model(const std::string& path, const LoadOptions& options) {
-  silence_occt();
+  prepare_occt();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("no such file: '" + path + "'");
   if (fs::is_directory(path, ec)) throw Error("'" + path + "' is a directory, not a CAD file");
+  if (!fs::is_regular_file(path, ec)) throw Error("'" + path + "' is not a regular file (a pipe or a device?)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot open '" + path + "' for reading");
   std::string head(4096, '\0');
@@ -205,18 +238,21 @@ Model load_model(const std::string& path, const LoadOptions& options) {
   info.format = format_name(by_content);
   std::vector<std::pair<TopoDS_Shape, std::string>> names;
   TopoDS_Shape shape;
+  check_complete(path, by_content);
   try {
+    OCC_CATCH_SIGNALS
     switch (by_content) {
       case Format::Step: shape = read_step(path, info, names); break;
       case Format::Iges: shape = read_iges(path, info); break;
       default: shape = read_brep(path, info); break;
     }
+    if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
+      throw Error("'" + path + "' contains no surfaces to mesh");
+    return model_from_shape(shape, info, options, names);
   } catch (const Standard_Failure& e) {
-    throw Error("cannot read '" + path + "': " + e.GetMessageString());
+    const char* why = e.GetMessageString();
+    throw Error("cannot read '" + path + "': " + (why && *why ? why : e.DynamicType()->Name()));
   }
-  if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
-    throw Error("'" + path + "' contains no surfaces to mesh");
-  return model_from_shape(shape, info, options, names);
 }
 
 }  // namespace sizemesh

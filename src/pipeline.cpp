@@ -1,5 +1,6 @@
 #include "src/pipeline.h"
 
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -46,7 +47,11 @@ void check_triangle_budget(const TriangleEstimate& e, double max_triangles, cons
 int run(const RunOptions& o) {
   // Refuse what cannot succeed before any long work starts.
   if (!o.output.empty()) check_writable(o.output), check_mesh_format(o.output);
-  if (!o.background.empty()) check_writable(o.background);
+  if (!o.background.empty()) {
+    check_writable(o.background);
+    if (std::filesystem::path(o.background).extension() != ".vtu")
+      throw Error("the background mesh is written as .vtu only, got '" + o.background + "'");
+  }
   if (!o.report.empty()) check_writable(o.report);
   SizingParams params = o.sizing;
   if (!o.config.empty()) read_config(o.config, params);

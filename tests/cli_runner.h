@@ -27,10 +27,12 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
-inline CommandResult run_sizemesh(const std::string& args) {
+// timeout_s > 0: the run is killed after that many seconds (its status is then not 0-3).
+inline CommandResult run_sizemesh(const std::string& args, int timeout_s = 0) {
   static int counter = 0;
   const std::string base = "/tmp/sizemesh_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd = std::string(SIZEMESH_BINARY) + " " + args + " >" + base + ".out 2>" + base + ".err";
+  const std::string limit = timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : "";
+  const std::string cmd = limit + SIZEMESH_BINARY + " " + args + " </dev/null >" + base + ".out 2>" + base + ".err";
   const int raw = std::system(cmd.c_str());
   CommandResult r;
   if (WIFEXITED(raw)) r.status = WEXITSTATUS(raw);
