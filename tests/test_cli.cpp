@@ -52,8 +52,8 @@ TEST_CASE("bad input gives one clear error line and a non-zero exit") {
   expect_one_error(test::run_sizemesh(bad("empty.step")), "is empty");
   expect_one_error(test::run_sizemesh(bad("not_cad.step")), "does not look like a STEP file");
   expect_one_error(test::run_sizemesh(bad("not_cad.xyz")), "unknown extension");
-  expect_one_error(test::run_sizemesh(bad("truncated.stp")), "truncated or malformed");
-  expect_one_error(test::run_sizemesh(bad("truncated.igs")), "no surfaces");
+  expect_one_error(test::run_sizemesh(bad("truncated.stp")), "is truncated: a STEP file ends with END-ISO-10303-21;");
+  expect_one_error(test::run_sizemesh(bad("truncated.igs")), "is truncated: an IGES file ends with its T (terminate) record");
   expect_one_error(test::run_sizemesh(bad("no_geometry.stp")), "contains no geometry");
   expect_one_error(test::run_sizemesh(wing + " -o /nonexistent_dir/mesh.vtu"), "cannot write");
   expect_one_error(test::run_sizemesh(wing + " -o " + bad.dir.string()), "is a directory");
