@@ -16,7 +16,7 @@
 
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
-#include "sizing/triangle_bvh.h"
+#include "geometry/triangle_bvh.h"
 
 using namespace sizemesh;
 

@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "mesher/edge_grid.h"
-#include "mesher/geometry2d.h"
+#include "geometry/predicates.h"
 
 namespace sizemesh {
 namespace {

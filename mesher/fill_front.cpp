@@ -5,7 +5,7 @@
 
 #include "geometry/background_mesh.h"
 
-#include "mesher/geometry2d.h"
+#include "geometry/predicates.h"
 
 namespace sizemesh {
 namespace {

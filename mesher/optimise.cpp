@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "mesher/geometry2d.h"
+#include "geometry/predicates.h"
 
 namespace sizemesh {
 namespace {

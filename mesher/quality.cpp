@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "mesher/geometry2d.h"
+#include "geometry/predicates.h"
 
 namespace sizemesh {
 

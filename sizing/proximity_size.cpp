@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "sizing/size_map.h"
-#include "sizing/triangle_bvh.h"
+#include "geometry/triangle_bvh.h"
 
 namespace sizemesh {
 

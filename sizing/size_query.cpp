@@ -1,86 +1,27 @@
 // The size query service (paper 4.2): walk-through base-element search in a
 // face's uv space after Shan et al. 2008, linear interpolation in the base
 // triangle, boundary clamping, and a 3D nearest-triangle query for at_xyz.
+// Construction is in size_query_build.cpp, the counters in size_query_stats.cpp.
 #include "sizing/size_query.h"
-#include "sizing/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "geometry/predicates.h"
+#include "geometry/triangle_bvh.h"
+#include "sizing/size_query_face.h"
+
 namespace sizemesh {
 
-// ---------------------------------------------------------------------------
-// Data
+using size_query_detail::BEdge;
+using size_query_detail::build_face;
+using size_query_detail::kDegenerate;
+using size_query_detail::kOwnedSlots;
+using size_query_detail::orient;
 
 namespace {
-
-// One edge of a patch's boundary (an edge with no neighbour), directed with
-// the domain on its left, linked to the boundary edges before and after it.
-struct BEdge {
-  int t = 0, k = 0;       // triangle and the corner the edge is opposite to
-  int prev = -1, next = -1;  // boundary edges ending at its start / starting at its end, -1 if unknown
-  double clearance = 0;   // uv distance to the nearest boundary edge other than itself, prev and next
-};
-
-}  // namespace
-
-struct SizeQuery::Face {
-  int id = 0;
-  std::vector<Tri> tris;       // #t, local ids as in the FacePatch
-  Vec2 lo{0, 0}, hi{0, 0};     // uv range of the patch
-  double period_u = 0, period_v = 0;
-  int step_limit = 64;         // walk steps before the brute-force fallback
-  // Grid of start triangles over the uv box (a start when the hint is far or missing).
-  Vec2 grid_lo{0, 0};
-  double inv_du = 0, inv_dv = 0;
-  int nx = 1, ny = 1;
-  std::vector<int> cell_tri;   // #nx*ny, a triangle containing (or near) each cell centre
-  // Boundary chain (clamping points outside the domain, going around obstacles).
-  std::vector<int> bslot;      // #3t, boundary edge of slot 3 t + k, or -1
-  std::vector<BEdge> bedges;
-};
-
-struct SizeQuery::Bvh {
-  struct Node {
-    Vec3 lo, hi;
-    int left = -1, right = -1;  // children; leaf when count > 0
-    int first = 0, count = 0;   // range of `order`
-  };
-  std::vector<Node> nodes;
-  std::vector<int> order;                   // triangle ids, leaf ranges
-  std::vector<std::array<Vec3, 3>> xyz;     // #T corner positions
-  std::vector<std::array<double, 3>> h;     // #T corner sizes
-};
-
-struct alignas(64) SizeQuery::StatSlot {
-  std::atomic<uint64_t> queries{0}, visited{0}, max_visited{0}, fallbacks{0}, outside{0};
-};
-
-namespace {
-
-constexpr int kOwnedSlots = 64;  // threads 0..63 own a slot; later threads share one more
-constexpr uint8_t kDegenerate = 8;  // Tri::base bit: zero area in uv
-
-int thread_ordinal() {
-  static std::atomic<int> next{0};
-  thread_local const int id = next.fetch_add(1, std::memory_order_relaxed);
-  return id;
-}
-
-// Orientation of p against edge k (corner k+1 -> corner k+2): twice the signed
-// area, >= 0 on the triangle's side. It is evaluated from the edge's canonical
-// end (lower local vertex id), so the two triangles sharing an edge get exactly
-// opposite values and a point can never be outside both (no ping-pong), and it
-// is exactly 0 at both ends of the edge.
-inline double orient(const SizeQuery::Tri& T, int k, double px, double py) {
-  const Vec2& P = T.uv[(k + 1) % 3];
-  const Vec2& Q = T.uv[(k + 2) % 3];
-  const double dx = Q.x() - P.x(), dy = Q.y() - P.y();
-  const Vec2& B = ((T.base >> k) & 1) ? Q : P;
-  return dx * (py - B.y()) - dy * (px - B.x());
-}
 
 // Squared uv length of edge k (corner k+1 to corner k+2).
 inline double edge_length2(const SizeQuery::Tri& T, int k) {
@@ -88,14 +29,6 @@ inline double edge_length2(const SizeQuery::Tri& T, int k) {
 }
 
 constexpr int kGreedySteps = 16;  // walk steps that choose the exit edge greedily
-
-// Nearest point of segment PQ to p: parameter s in [0,1] and squared distance.
-inline void project_segment(const Vec2& P, const Vec2& Q, const Vec2& p, double& s, double& d2) {
-  const Vec2 d = Q - P;
-  const double len2 = d.squaredNorm();
-  s = len2 > 0 ? std::clamp((p - P).dot(d) / len2, 0.0, 1.0) : 0.0;
-  d2 = (p - (P + s * d)).squaredNorm();
-}
 
 inline double lerp(double a, double b, double s) { return (1 - s) * a + s * b; }
 
@@ -146,37 +79,6 @@ double wrap_periodic(double x, double lo, double hi, double P) {
   return below < above ? y - P : y;
 }
 
-// Twice the signed area of (a, b, c).
-inline double orient3(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
-// True when closed segments ab and cd touch (conservative: touching counts).
-bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double o1 = orient3(a, b, c), o2 = orient3(a, b, d), o3 = orient3(c, d, a), o4 = orient3(c, d, b);
-  if (o1 == 0 && o2 == 0) {  // collinear: overlap of the projections
-    const Vec2 u = b - a;
-    double lo = 0, hi = u.squaredNorm();
-    const double t1 = (c - a).dot(u), t2 = (d - a).dot(u);
-    return std::max(t1, t2) >= lo && std::min(t1, t2) <= hi;
-  }
-  return ((o1 <= 0 && o2 >= 0) || (o1 >= 0 && o2 <= 0)) && ((o3 <= 0 && o4 >= 0) || (o3 >= 0 && o4 <= 0));
-}
-
-double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  if (segments_touch(a, b, c, d)) return 0;
-  double s, d2, best = std::numeric_limits<double>::infinity();
-  project_segment(a, b, c, s, d2);
-  best = std::min(best, d2);
-  project_segment(a, b, d, s, d2);
-  best = std::min(best, d2);
-  project_segment(c, d, a, s, d2);
-  best = std::min(best, d2);
-  project_segment(c, d, b, s, d2);
-  best = std::min(best, d2);
-  return std::sqrt(best);
-}
-
 [[noreturn]] void throw_bad_face(int face, int num_faces) {
   throw Error("size query: face " + std::to_string(face) + " does not exist (the background mesh has " +
               std::to_string(num_faces) + " faces)");
@@ -191,245 +93,11 @@ double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2&
   throw Error("size query: a non-finite uv was asked on face " + std::to_string(face));
 }
 
-double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  return (p.cwiseMax(lo).cwiseMin(hi) - p).squaredNorm();
-}
-
-}  // namespace
-
-void QueryStats::add(const QueryStats& o) {
-  queries += o.queries;
-  visited += o.visited;
-  max_visited = std::max(max_visited, o.max_visited);
-  fallbacks += o.fallbacks;
-  outside += o.outside;
-}
-
-// ---------------------------------------------------------------------------
-// Construction: per-triangle walk records, start grids, the 3D hierarchy.
-
-namespace {
-
-void build_start_grid(SizeQuery::Face& f) {
-  const int nt = static_cast<int>(f.tris.size());
-  const Vec2 span = (f.hi - f.lo).cwiseMax(Vec2::Constant(1e-300));
-  // About four cells per triangle, cells shaped like the patch's uv box.
-  const double cells = std::max(1.0, 4.0 * nt);
-  const double ratio = span.x() / span.y();
-  f.nx = static_cast<int>(std::clamp(std::round(std::sqrt(cells * ratio)), 1.0, 4096.0));
-  f.ny = static_cast<int>(std::clamp(std::round(cells / f.nx), 1.0, 4096.0));
-  f.grid_lo = f.lo;
-  f.inv_du = f.nx / span.x();
-  f.inv_dv = f.ny / span.y();
-  f.cell_tri.assign(static_cast<size_t>(f.nx) * f.ny, -1);
-  const double du = span.x() / f.nx, dv = span.y() / f.ny;
-  for (int t = 0; t < nt; ++t) {
-    const SizeQuery::Tri& T = f.tris[t];
-    if (T.base & kDegenerate) continue;
-    Vec2 lo = T.uv[0].cwiseMin(T.uv[1]).cwiseMin(T.uv[2]), hi = T.uv[0].cwiseMax(T.uv[1]).cwiseMax(T.uv[2]);
-    const int i0 = std::max(0, static_cast<int>(std::ceil((lo.x() - f.lo.x()) / du - 0.5)));
-    const int i1 = std::min(f.nx - 1, static_cast<int>(std::floor((hi.x() - f.lo.x()) / du - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil((lo.y() - f.lo.y()) / dv - 0.5)));
-    const int j1 = std::min(f.ny - 1, static_cast<int>(std::floor((hi.y() - f.lo.y()) / dv - 0.5)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        int& cell = f.cell_tri[static_cast<size_t>(j) * f.nx + i];
-        if (cell >= 0) continue;
-        const double px = f.lo.x() + (i + 0.5) * du, py = f.lo.y() + (j + 0.5) * dv;
-        if (orient(T, 0, px, py) >= 0 && orient(T, 1, px, py) >= 0 && orient(T, 2, px, py) >= 0) cell = t;
-      }
-  }
-  // Cells whose centre is outside the domain take a neighbouring cell's triangle
-  // (breadth-first from the covered cells).
-  std::vector<int> queue;
-  for (int c = 0; c < static_cast<int>(f.cell_tri.size()); ++c)
-    if (f.cell_tri[c] >= 0) queue.push_back(c);
-  if (queue.empty()) {
-    std::fill(f.cell_tri.begin(), f.cell_tri.end(), 0);
-    return;
-  }
-  for (size_t q = 0; q < queue.size(); ++q) {
-    const int c = queue[q], i = c % f.nx, j = c / f.nx;
-    const int nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
-    for (const auto& n : nb) {
-      if (n[0] < 0 || n[0] >= f.nx || n[1] < 0 || n[1] >= f.ny) continue;
-      int& cell = f.cell_tri[static_cast<size_t>(n[1]) * f.nx + n[0]];
-      if (cell >= 0) continue;
-      cell = f.cell_tri[c];
-      queue.push_back(n[1] * f.nx + n[0]);
-    }
-  }
-}
-
-// Links the boundary edges of a patch (rotating around each end through the
-// triangle fan) and computes their clearances.
-void build_boundary(SizeQuery::Face& f, const FacePatch& patch) {
-  const int nt = static_cast<int>(f.tris.size());
-  f.bslot.assign(3 * static_cast<size_t>(nt), -1);
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-      if (f.tris[t].adj[k] < 0) {
-        f.bslot[3 * t + k] = static_cast<int>(f.bedges.size());
-        BEdge e;
-        e.t = t;
-        e.k = k;
-        f.bedges.push_back(e);
-      }
-  const auto& tv = patch.tris;
-  auto corner_of = [&](int t, int v) {
-    for (int c = 0; c < 3; ++c)
-      if (tv[t][c] == v) return c;
-    return -1;
-  };
-  // Around vertex v = corner c of triangle t, forward (leaving by the edge from v)
-  // or backward (by the edge into v), until an edge with no neighbour: its slot
-  // 3 t + k, or -1 when the fan is broken.
-  auto rotate = [&](int t, int c, bool forward) {
-    const int v = tv[t][c];
-    int from = -1;
-    for (int steps = 0; steps <= nt; ++steps) {
-      // The two edges at v are opposite corners c+1 and c+2; leave by the one not leading back.
-      int j = forward ? (c + 2) % 3 : (c + 1) % 3;
-      if (from >= 0 && f.tris[t].adj[j] == from) j = forward ? (c + 1) % 3 : (c + 2) % 3;
-      const int n = f.tris[t].adj[j];
-      if (n < 0) return 3 * t + j;
-      from = t;
-      t = n;
-      c = corner_of(t, v);
-      if (c < 0) return -1;
-    }
-    return -1;
-  };
-  for (BEdge& e : f.bedges) {
-    const int a = tv[e.t][(e.k + 1) % 3], b = tv[e.t][(e.k + 2) % 3];
-    // Next: the boundary edge leaving b; previous: the one arriving at a.
-    int slot = rotate(e.t, (e.k + 2) % 3, true);
-    if (slot >= 0 && tv[slot / 3][(slot % 3 + 1) % 3] == b) e.next = f.bslot[slot];
-    slot = rotate(e.t, (e.k + 1) % 3, false);
-    if (slot >= 0 && tv[slot / 3][(slot % 3 + 2) % 3] == a) e.prev = f.bslot[slot];
-  }
-  // Clearances, by a sweep in u; beyond the longest boundary edge they are not needed.
-  const int nb = static_cast<int>(f.bedges.size());
-  std::vector<std::array<Vec2, 2>> seg(nb);
-  double cap = 0;
-  for (int i = 0; i < nb; ++i) {
-    const SizeQuery::Tri& T = f.tris[f.bedges[i].t];
-    seg[i] = {T.uv[(f.bedges[i].k + 1) % 3], T.uv[(f.bedges[i].k + 2) % 3]};
-    cap = std::max(cap, (seg[i][1] - seg[i][0]).norm());
-  }
-  for (BEdge& e : f.bedges) e.clearance = cap;
-  std::vector<int> order(nb);
-  for (int i = 0; i < nb; ++i) order[i] = i;
-  auto umin = [&](int i) { return std::min(seg[i][0].x(), seg[i][1].x()); };
-  auto umax = [&](int i) { return std::max(seg[i][0].x(), seg[i][1].x()); };
-  std::sort(order.begin(), order.end(), [&](int x, int y) { return umin(x) < umin(y); });
-  for (int a = 0; a < nb; ++a) {
-    const int i = order[a];
-    for (int b = a + 1; b < nb && umin(order[b]) <= umax(i) + cap; ++b) {
-      const int j = order[b];
-      BEdge &ei = f.bedges[i], &ej = f.bedges[j];
-      const bool neighbours = ei.prev == j || ei.next == j;
-      const bool neighbours_j = ej.prev == i || ej.next == i;
-      if (neighbours && neighbours_j) continue;
-      const double d = segment_distance(seg[i][0], seg[i][1], seg[j][0], seg[j][1]);
-      if (!neighbours) ei.clearance = std::min(ei.clearance, d);
-      if (!neighbours_j) ej.clearance = std::min(ej.clearance, d);
-    }
-  }
-}
-
-SizeQuery::Face build_face(const FacePatch& patch, int id, const std::vector<double>& h, double period_u,
-                           double period_v) {
-  SizeQuery::Face f;
-  f.id = id;
-  f.period_u = period_u > 0 ? period_u : 0;
-  f.period_v = period_v > 0 ? period_v : 0;
-  const int nt = static_cast<int>(patch.tris.size());
-  if (nt == 0 || patch.uv.empty()) return f;
-  f.lo = f.hi = patch.uv[0];
-  for (const Vec2& uv : patch.uv) {
-    f.lo = f.lo.cwiseMin(uv);
-    f.hi = f.hi.cwiseMax(uv);
-  }
-  f.tris.resize(nt);
-  for (int t = 0; t < nt; ++t) {
-    SizeQuery::Tri& T = f.tris[t];
-    const auto& v = patch.tris[t];
-    for (int k = 0; k < 3; ++k) {
-      T.uv[k] = patch.uv[v[k]];
-      const int g = patch.vertex[v[k]];
-      if (g < 0 || g >= static_cast<int>(h.size()))
-        throw Error("size query: face " + std::to_string(id) + " uses a background vertex with no size");
-      T.h[k] = h[g];
-      T.adj[k] = patch.adj.empty() ? -1 : patch.adj[t][k];
-      T.back[k] = -1;
-      // Canonical end of edge k: the lower local vertex id of corners k+1, k+2.
-      if (v[(k + 2) % 3] < v[(k + 1) % 3]) T.base |= static_cast<uint8_t>(1u << k);
-    }
-    const Vec2 e1 = T.uv[1] - T.uv[0], e2 = T.uv[2] - T.uv[0], e3 = T.uv[2] - T.uv[1];
-    const double area2 = e1.x() * e2.y() - e1.y() * e2.x();
-    const double lmax2 = std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm()});
-    if (!(area2 > 1e-12 * lmax2)) T.base |= kDegenerate;
-  }
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int n = f.tris[t].adj[k];
-      if (n < 0 || n >= nt) {
-        f.tris[t].adj[k] = -1;
-        continue;
-      }
-      for (int j = 0; j < 3; ++j)
-        if (f.tris[n].adj[j] == t) f.tris[t].back[k] = static_cast<int8_t>(j);
-      if (f.tris[t].back[k] < 0) f.tris[t].adj[k] = -1;  // one-sided adjacency: treat as boundary
-    }
-  f.step_limit = 64 + nt / 2;
-  build_start_grid(f);
-  build_boundary(f, patch);
-  return f;
-}
-
-void build_bvh(SizeQuery::Bvh& b, int node, int first, int count) {
-  auto& order = b.order;
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  Vec3 clo = lo, chi = hi;
-  for (int i = first; i < first + count; ++i)
-    for (const Vec3& p : b.xyz[order[i]]) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  for (int i = first; i < first + count; ++i) {
-    const Vec3 c = (b.xyz[order[i]][0] + b.xyz[order[i]][1] + b.xyz[order[i]][2]) / 3;
-    clo = clo.cwiseMin(c);
-    chi = chi.cwiseMax(c);
-  }
-  b.nodes[node].lo = lo;
-  b.nodes[node].hi = hi;
-  if (count <= 4) {
-    b.nodes[node].first = first;
-    b.nodes[node].count = count;
-    return;
-  }
-  int axis;
-  (chi - clo).maxCoeff(&axis);
-  const int mid = first + count / 2;
-  std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + first + count, [&](int x, int y) {
-    return b.xyz[x][0][axis] + b.xyz[x][1][axis] + b.xyz[x][2][axis] <
-           b.xyz[y][0][axis] + b.xyz[y][1][axis] + b.xyz[y][2][axis];
-  });
-  const int left = static_cast<int>(b.nodes.size());
-  b.nodes.emplace_back();
-  b.nodes.emplace_back();
-  b.nodes[node].left = left;
-  b.nodes[node].right = left + 1;
-  build_bvh(b, left, first, mid - first);
-  build_bvh(b, left + 1, mid, first + count - mid);
-}
-
 }  // namespace
 
 SizeQuery::SizeQuery(const BackgroundMesh& bg, std::vector<double> h, std::vector<double> period_u,
                      std::vector<double> period_v)
-    : bvh_(std::make_unique<Bvh>()), slots_(std::make_unique<StatSlot[]>(kOwnedSlots + 1)) {
+    : bvh_(std::make_unique<TriangleBVH>(bg.xyz, bg.tris)), slots_(std::make_unique<StatSlot[]>(kOwnedSlots + 1)) {
   if (h.size() != bg.xyz.size())
     throw Error("size query: " + std::to_string(h.size()) + " sizes given for " + std::to_string(bg.xyz.size()) +
                 " background vertices");
@@ -440,23 +108,9 @@ SizeQuery::SizeQuery(const BackgroundMesh& bg, std::vector<double> h, std::vecto
     const double pv = i < static_cast<int>(period_v.size()) ? period_v[i] : 0;
     faces_.push_back(build_face(bg.patches[i], i + 1, h, pu, pv));
   }
-  Bvh& b = *bvh_;
-  const int nt = bg.num_triangles();
-  b.xyz.resize(nt);
-  b.h.resize(nt);
-  b.order.resize(nt);
-  for (int t = 0; t < nt; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      b.xyz[t][k] = bg.xyz[bg.tris[t][k]];
-      b.h[t][k] = h[bg.tris[t][k]];
-    }
-    b.order[t] = t;
-  }
-  if (nt > 0) {
-    b.nodes.reserve(nt + 8);  // at most 2 #leaves - 1 nodes, leaves hold up to 4 triangles
-    b.nodes.emplace_back();
-    build_bvh(b, 0, 0, nt);
-  }
+  tri_h_.resize(bg.tris.size());
+  for (size_t t = 0; t < bg.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) tri_h_[t][k] = h[bg.tris[t][k]];
 }
 
 SizeQuery::~SizeQuery() = default;
@@ -681,7 +335,7 @@ SizeQuery::Hit SizeQuery::go_around(const Face& f, const Vec2& p, int t0, QueryS
   const BEdge* be = f.bedges.data();
   const Tri& T0 = tris[t0];
   const Vec2 S = (T0.uv[0] + T0.uv[1] + T0.uv[2]) / 3;
-  auto side = [&](const Vec2& v) { return orient3(S, p, v); };  // > 0: left of m
+  auto side = [&](const Vec2& v) { return orient(S, p, v); };  // > 0: left of m
   const int budget = 4 * (static_cast<int>(f.tris.size()) + static_cast<int>(f.bedges.size())) + 64;
   const double progress = 1e-12 * (f.hi - f.lo).norm();
   int visited = 0, t = t0, entry = -1;
@@ -826,97 +480,14 @@ double SizeQuery::at(int face, const Vec2& uv, int& hint) const {
 }
 
 // ---------------------------------------------------------------------------
-// Query in xyz: nearest background triangle, branch and bound over the hierarchy.
+// Query in xyz: the size at the closest point of the nearest background triangle.
 
 double SizeQuery::at_xyz(const Vec3& xyz) const {
-  const Bvh& b = *bvh_;
-  if (b.nodes.empty()) throw Error("size query: the background mesh has no triangles");
+  if (bvh_->size() == 0) throw Error("size query: the background mesh has no triangles");
   if (!xyz.allFinite()) throw Error("size query: a non-finite point was asked");
-  double best = std::numeric_limits<double>::infinity(), h = b.h[0][0];
-  int stack[128];  // median splits: depth <= log2(#T) < 32, the stack holds at most depth + 1
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Bvh::Node& node = b.nodes[stack[--top]];
-    if (box_distance2(xyz, node.lo, node.hi) >= best) continue;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        const int t = b.order[i];
-        const Vec3 w = TriangleBVH::closest_barycentric(xyz, b.xyz[t][0], b.xyz[t][1], b.xyz[t][2]);
-        const Vec3 q = w[0] * b.xyz[t][0] + w[1] * b.xyz[t][1] + w[2] * b.xyz[t][2];
-        const double d2 = (q - xyz).squaredNorm();
-        if (d2 < best) {
-          best = d2;
-          h = w[0] * b.h[t][0] + w[1] * b.h[t][1] + w[2] * b.h[t][2];
-        }
-      }
-      continue;
-    }
-    // Nearer child last, so it is visited first.
-    const double dl = box_distance2(xyz, b.nodes[node.left].lo, b.nodes[node.left].hi);
-    const double dr = box_distance2(xyz, b.nodes[node.right].lo, b.nodes[node.right].hi);
-    if (dl < dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
-    } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
-    }
-  }
-  return h;
-}
-
-// ---------------------------------------------------------------------------
-// Counters: one cache line per thread, written only by its owner.
-
-void SizeQuery::count(const QueryStats& one) const {
-  const int id = thread_ordinal();
-  constexpr auto rel = std::memory_order_relaxed;
-  if (id < kOwnedSlots) {
-    StatSlot& s = slots_[id];
-    s.queries.store(s.queries.load(rel) + one.queries, rel);
-    s.visited.store(s.visited.load(rel) + one.visited, rel);
-    if (one.max_visited > s.max_visited.load(rel)) s.max_visited.store(one.max_visited, rel);
-    if (one.fallbacks) s.fallbacks.store(s.fallbacks.load(rel) + one.fallbacks, rel);
-    if (one.outside) s.outside.store(s.outside.load(rel) + one.outside, rel);
-    return;
-  }
-  StatSlot& s = slots_[kOwnedSlots];
-  s.queries.fetch_add(one.queries, rel);
-  s.visited.fetch_add(one.visited, rel);
-  uint64_t m = s.max_visited.load(rel);
-  while (one.max_visited > m && !s.max_visited.compare_exchange_weak(m, one.max_visited, rel)) {
-  }
-  s.fallbacks.fetch_add(one.fallbacks, rel);
-  s.outside.fetch_add(one.outside, rel);
-}
-
-QueryStats SizeQuery::stats() const {
-  QueryStats total;
-  constexpr auto rel = std::memory_order_relaxed;
-  for (int i = 0; i <= kOwnedSlots; ++i) {
-    const StatSlot& s = slots_[i];
-    QueryStats one;
-    one.queries = s.queries.load(rel);
-    one.visited = s.visited.load(rel);
-    one.max_visited = s.max_visited.load(rel);
-    one.fallbacks = s.fallbacks.load(rel);
-    one.outside = s.outside.load(rel);
-    total.add(one);
-  }
-  return total;
-}
-
-void SizeQuery::reset_stats() {
-  constexpr auto rel = std::memory_order_relaxed;
-  for (int i = 0; i <= kOwnedSlots; ++i) {
-    StatSlot& s = slots_[i];
-    s.queries.store(0, rel);
-    s.visited.store(0, rel);
-    s.max_visited.store(0, rel);
-    s.fallbacks.store(0, rel);
-    s.outside.store(0, rel);
-  }
+  const TriangleBVH::Closest c = bvh_->closest(xyz);
+  const auto& h = tri_h_[c.tri];
+  return c.weights[0] * h[0] + c.weights[1] * h[1] + c.weights[2] * h[2];
 }
 
 SizeQuery size_query_for(const Geometry& g, const BackgroundMesh& bg, std::vector<double> h) {

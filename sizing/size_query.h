@@ -56,6 +56,10 @@
 #include "sizing/size_function.h"
 
 namespace sizemesh {
+class TriangleBVH;
+}
+
+namespace sizemesh {
 
 // Counters of the base-element search (the paper reports the mean search depth).
 struct QueryStats {
@@ -112,7 +116,6 @@ class SizeQuery final : public SizeFunction {
     uint8_t base = 0;            // bit k: edge k is evaluated from corner k+2 (else k+1)
   };
   struct Face;  // a face's triangles, start grid and periods
-  struct Bvh;   // global triangles for at_xyz
   struct StatSlot;
 
  private:
@@ -124,7 +127,8 @@ class SizeQuery final : public SizeFunction {
   void count(const QueryStats& one) const;
 
   std::vector<Face> faces_;      // index face - 1
-  std::unique_ptr<Bvh> bvh_;
+  std::unique_ptr<TriangleBVH> bvh_;       // background triangles in xyz, for at_xyz
+  std::vector<std::array<double, 3>> tri_h_;  // #T corner sizes
   std::unique_ptr<StatSlot[]> slots_;
   bool grid_with_hint_ = true;
   std::function<Vec3(int, const Vec2&)> surface_;

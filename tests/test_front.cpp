@@ -15,7 +15,7 @@
 #include "mesher/discretise_curves.h"
 #include "mesher/face_boundary.h"
 #include "mesher/fill_front.h"
-#include "mesher/geometry2d.h"
+#include "geometry/predicates.h"
 #include "mesher/mesh_surface.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"

@@ -1,7 +1,13 @@
-// Small predicates on uv points and space triangles shared by the face mesher.
+// Geometric predicates and small measures, in one place for every stage:
+// uv orientation and segment tests (face mesher, size query), triangle shape
+// measures (optimiser, quality report), and the 3D triangle intersection tests
+// of the self-intersection check. All in floating point: exact enough for
+// reporting and for choosing between candidates; tests re-check with exact
+// arithmetic.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "geometry/types.h"
@@ -51,6 +57,37 @@ inline bool segments_meet(const Vec2& p1, const Vec2& p2, const Vec2& q1, const 
   if (std::abs(d3) <= tol && within(p1, p2, q1)) return true;
   if (std::abs(d4) <= tol && within(p1, p2, q2)) return true;
   return false;
+}
+
+
+// True when closed uv segments ab and cd touch, without tolerance (touching counts).
+inline bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (o1 == 0 && o2 == 0) {  // collinear: overlap of the projections
+    const Vec2 u = b - a;
+    const double t1 = (c - a).dot(u), t2 = (d - a).dot(u);
+    return std::max(t1, t2) >= 0 && std::min(t1, t2) <= u.squaredNorm();
+  }
+  return ((o1 <= 0 && o2 >= 0) || (o1 >= 0 && o2 <= 0)) && ((o3 <= 0 && o4 >= 0) || (o3 >= 0 && o4 <= 0));
+}
+
+// Nearest point of segment PQ to p: parameter s in [0,1] and squared distance.
+inline void project_segment(const Vec2& P, const Vec2& Q, const Vec2& p, double& s, double& d2) {
+  const Vec2 d = Q - P;
+  const double len2 = d.squaredNorm();
+  s = len2 > 0 ? std::clamp((p - P).dot(d) / len2, 0.0, 1.0) : 0.0;
+  d2 = (p - (P + s * d)).squaredNorm();
+}
+
+// Distance between closed uv segments ab and cd (0 when they touch).
+inline double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  if (segments_touch(a, b, c, d)) return 0;
+  double s, d2, best = INFINITY;
+  for (const auto& [P, Q, x] : {std::array<Vec2, 3>{a, b, c}, {a, b, d}, {c, d, a}, {c, d, b}}) {
+    project_segment(P, Q, x, s, d2);
+    best = std::min(best, d2);
+  }
+  return std::sqrt(best);
 }
 
 }  // namespace sizemesh

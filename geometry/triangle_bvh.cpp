@@ -1,4 +1,4 @@
-#include "sizing/triangle_bvh.h"
+#include "geometry/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,13 @@
 namespace sizemesh {
 
 TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& tris)
-    : xyz_(xyz), tris_(tris) {
+{
   const int n = static_cast<int>(tris.size());
+  corners_.resize(n);
   order_.resize(n);
   centroid_.resize(n);
   for (int t = 0; t < n; ++t) {
+    for (int k = 0; k < 3; ++k) corners_[t][k] = xyz[tris[t][k]];
     order_[t] = t;
     centroid_[t] = (xyz[tris[t][0]] + xyz[tris[t][1]] + xyz[tris[t][2]]) / 3.0;
   }
@@ -24,7 +26,7 @@ int TriangleBVH::build(int begin, int end) {
   nodes_.emplace_back();
   Eigen::AlignedBox3d box, cbox;
   for (int i = begin; i < end; ++i) {
-    for (int k = 0; k < 3; ++k) box.extend(xyz_[tris_[order_[i]][k]]);
+    for (const Vec3& p : corners_[order_[i]]) box.extend(p);
     cbox.extend(centroid_[order_[i]]);
   }
   nodes_[id].box = box;
@@ -98,8 +100,8 @@ TriangleBVH::Hit TriangleBVH::ray(const Vec3& origin, const Vec3& dir, double t_
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i) {
         const int t = order_[i];
-        const auto& tr = tris_[t];
-        const double d = ray_triangle(origin, dir, xyz_[tr[0]], xyz_[tr[1]], xyz_[tr[2]]);
+        const auto& c = corners_[t];
+        const double d = ray_triangle(origin, dir, c[0], c[1], c[2]);
         if (d < best.t && accept(t)) {
           best.t = d;
           best.tri = t;
@@ -161,9 +163,9 @@ std::vector<std::pair<int, double>> TriangleBVH::nearest(const Vec3& p, double s
     if (n.box.exteriorDistance(p) > best + slack) continue;
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i) {
-        const auto& tr = tris_[order_[i]];
-        const Vec3 w = closest_barycentric(p, xyz_[tr[0]], xyz_[tr[1]], xyz_[tr[2]]);
-        const double d = (w[0] * xyz_[tr[0]] + w[1] * xyz_[tr[1]] + w[2] * xyz_[tr[2]] - p).norm();
+        const auto& c = corners_[order_[i]];
+        const Vec3 w = closest_barycentric(p, c[0], c[1], c[2]);
+        const double d = (w[0] * c[0] + w[1] * c[1] + w[2] * c[2] - p).norm();
         if (d <= best + slack) found.emplace_back(order_[i], d);
         best = std::min(best, d);
       }
@@ -175,6 +177,69 @@ std::vector<std::pair<int, double>> TriangleBVH::nearest(const Vec3& p, double s
   found.erase(std::remove_if(found.begin(), found.end(), [&](const auto& f) { return f.second > best + slack; }),
               found.end());
   return found;
+}
+
+}  // namespace sizemesh
+
+namespace sizemesh {
+
+TriangleBVH::Box TriangleBVH::box(int tri) const {
+  Box b;
+  for (const Vec3& p : corners_[tri]) b.extend(p);
+  return b;
+}
+
+namespace {
+// Squared distance from p to an axis-aligned box (0 inside).
+double box_distance2(const Vec3& p, const Eigen::AlignedBox3d& b) {
+  return (p - p.cwiseMax(b.min()).cwiseMin(b.max())).squaredNorm();
+}
+}  // namespace
+
+TriangleBVH::Closest TriangleBVH::closest(const Vec3& p) const {
+  Closest best;
+  best.distance2 = INFINITY;
+  if (nodes_.empty()) return best;
+  int stack[128];  // median splits: depth <= log2(#T) < 32
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (box_distance2(p, n.box) >= best.distance2) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i) {
+        const auto& c = corners_[order_[i]];
+        const Vec3 w = closest_barycentric(p, c[0], c[1], c[2]);
+        const double d2 = (w[0] * c[0] + w[1] * c[1] + w[2] * c[2] - p).squaredNorm();
+        if (d2 < best.distance2) best = {order_[i], w, d2};
+      }
+      continue;
+    }
+    if (top + 2 > 128) continue;
+    // Nearer child last, so it is visited first.
+    const double dl = box_distance2(p, nodes_[n.left].box), dr = box_distance2(p, nodes_[n.right].box);
+    stack[top++] = dl < dr ? n.right : n.left;
+    stack[top++] = dl < dr ? n.left : n.right;
+  }
+  return best;
+}
+
+void TriangleBVH::overlapping(const Box& query, const std::function<void(int)>& visit) const {
+  if (nodes_.empty()) return;
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!n.box.intersects(query)) continue;
+    if (n.left < 0) {
+      for (int i = n.begin; i < n.end; ++i)
+        if (box(order_[i]).intersects(query)) visit(order_[i]);
+    } else if (top + 2 <= 128) {
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
 }
 
 }  // namespace sizemesh
