@@ -1,5 +1,5 @@
 # Finds every library sizemesh builds on; all come from Debian 12 packages
-# (cmake/install-deps.sh installs them).
+# (cmake/setup.sh installs them).
 
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(TBB REQUIRED)
@@ -31,5 +31,11 @@ pkg_check_modules(MUPARSER REQUIRED IMPORTED_TARGET muparser)
 add_library(sizemesh::muparser INTERFACE IMPORTED)
 target_link_libraries(sizemesh::muparser INTERFACE PkgConfig::MUPARSER)
 
-# Catch2 v2 for the tests.
+# Boost.Multiprecision (headers): exact integers behind the geometric predicates
+# of the self-intersection check when floating point cannot decide.
+find_package(Boost 1.74 REQUIRED)
+
+# Catch2 v2 for the tests; CGAL (headers) as an independent exact checker of
+# self-intersections in the tests.
 find_package(Catch2 2 REQUIRED)
+find_package(CGAL REQUIRED)

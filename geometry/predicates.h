@@ -1,9 +1,7 @@
 // Geometric predicates and small measures, in one place for every stage:
 // uv orientation and segment tests (face mesher, size query), triangle shape
-// measures (optimiser, quality report), and the 3D triangle intersection tests
-// of the self-intersection check. All in floating point: exact enough for
-// reporting and for choosing between candidates; tests re-check with exact
-// arithmetic.
+// measures (optimiser, quality report) in floating point, and the exact 3D
+// triangle intersection tests of the self-intersection check (predicates.cpp).
 #pragma once
 
 #include <algorithm>
@@ -89,5 +87,23 @@ inline double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, cons
   }
   return std::sqrt(best);
 }
+
+// Sign (-1, 0, 1) of six times the signed volume of (a, b, c, d): > 0 when d
+// lies below the plane of a, b, c seen counter-clockwise from above. Exact: a
+// floating-point filter, and rational arithmetic when the filter cannot tell.
+int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+// Sign of twice the signed area of uv points (a, b, c), exact as orient3d_sign.
+int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c);
+
+// True when closed segment pq meets closed triangle abc (a non-degenerate
+// triangle), decided exactly. Coplanar cases are decided in the projection that
+// drops the dominant axis of the triangle's normal.
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// True when two closed triangles meet: then an edge of one meets the other
+// (the ends of their common segment lie on edges; a contained triangle's
+// edges lie inside the other).
+bool triangles_meet(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
 
 }  // namespace sizemesh

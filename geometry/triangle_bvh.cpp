@@ -18,6 +18,10 @@ TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::ar
   }
   nodes_.reserve(2 * n + 1);
   if (n > 0) build(0, n);
+  std::vector<Vec3>().swap(centroid_);  // only the build needs them
+  boxes_.resize(n);
+  for (int t = 0; t < n; ++t)
+    for (const Vec3& p : corners_[t]) boxes_[t].extend(p);
 }
 
 // Median split along the longest axis of the centroids' box.
@@ -183,11 +187,6 @@ std::vector<std::pair<int, double>> TriangleBVH::nearest(const Vec3& p, double s
 
 namespace sizemesh {
 
-TriangleBVH::Box TriangleBVH::box(int tri) const {
-  Box b;
-  for (const Vec3& p : corners_[tri]) b.extend(p);
-  return b;
-}
 
 namespace {
 // Squared distance from p to an axis-aligned box (0 inside).
@@ -234,7 +233,7 @@ void TriangleBVH::overlapping(const Box& query, const std::function<void(int)>& 
     if (!n.box.intersects(query)) continue;
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i)
-        if (box(order_[i]).intersects(query)) visit(order_[i]);
+        if (boxes_[order_[i]].intersects(query)) visit(order_[i]);
     } else if (top + 2 <= 128) {
       stack[top++] = n.left;
       stack[top++] = n.right;

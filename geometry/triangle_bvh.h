@@ -27,7 +27,7 @@ class TriangleBVH {
 
   int size() const { return static_cast<int>(corners_.size()); }
   const std::array<Vec3, 3>& corners(int tri) const { return corners_[tri]; }
-  Box box(int tri) const;
+  const Box& box(int tri) const { return boxes_[tri]; }
 
   struct Hit {
     int tri = -1;
@@ -64,7 +64,8 @@ class TriangleBVH {
 
   std::vector<std::array<Vec3, 3>> corners_;
   std::vector<int> order_;
-  std::vector<Vec3> centroid_;
+  std::vector<Vec3> centroid_;  // during the build only
+  std::vector<Box> boxes_;      // #T
   std::vector<Node> nodes_;
 };
 

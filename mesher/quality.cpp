@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <set>
+#include <unordered_map>
 
 #include "geometry/predicates.h"
+#include "mesher/self_intersection.h"
 
 namespace sizemesh {
 
@@ -47,6 +50,55 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
   return r;
 }
 
+// Angles of triangle t at its corners (degrees).
+std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
+  std::array<double, 3> a{};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = m.xyz[m.tris[t][k]];
+    const Vec3 u = m.xyz[m.tris[t][(k + 1) % 3]] - p, v = m.xyz[m.tris[t][(k + 2) % 3]] - p;
+    a[k] = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
+  }
+  return a;
+}
+
+// Triangles under 12 degrees whose smallest angle sits at a B-rep point where
+// the face's corner (the angle sum of that face's triangles there) is itself
+// under 12 degrees: no triangle there can do better.
+void count_forced_slivers(const SurfaceMesh& m, MeshQuality& q) {
+  auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
+  std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (m.node_dim[m.tris[t][k]] == 0) corner[key(m.tris[t][k], t)] += corner_angles(m, t)[k];
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    if (!(q.min_angle[t] < 12)) continue;
+    const auto a = corner_angles(m, t);
+    const int k = static_cast<int>(std::min_element(a.begin(), a.end()) - a.begin());
+    const int node = m.tris[t][k];
+    if (m.node_dim[node] == 0 && corner[key(node, t)] < 12) ++q.forced_below_12;
+  }
+  q.avoidable_below_12 = q.below_12 - q.forced_below_12;
+}
+
+// All intersecting pairs, and the local ones: in one face or in two faces
+// that share a curve (other pairs are components crossing each other).
+void count_self_intersections(const SurfaceMesh& m, const std::set<std::pair<int, int>>& neighbours,
+                              MeshQuality& q) {
+  const SelfIntersections si = find_self_intersections(m, size_t(1) << 20);
+  q.self_intersections = si.pairs;
+  std::set<std::pair<int, int>> faces;
+  for (const auto& [s, t] : si.kept) {
+    const int fa = std::min(m.tri_face[s], m.tri_face[t]), fb = std::max(m.tri_face[s], m.tri_face[t]);
+    if (fa != fb && !neighbours.count({fa, fb})) continue;
+    ++q.local_self_intersections;
+    faces.insert({fa, fb});
+  }
+  for (const auto& [fa, fb] : faces) {
+    if (q.intersecting_faces.size() >= 20) break;
+    q.intersecting_faces.push_back({fa, fb});
+  }
+}
+
 }  // namespace
 
 MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h) {
@@ -77,6 +129,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
+  count_forced_slivers(m, q);
   // Edge uses, sorted by undirected edge: (min, max) << 1 | reversed, then the
   // use (triangle, side) so each group is one edge with its directions.
   std::vector<std::pair<uint64_t, uint32_t>> uses(3 * nt);
@@ -89,6 +142,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
   });
   tbb::parallel_sort(uses.begin(), uses.end());
   int edges = 0, conforming = 0;
+  std::set<std::pair<int, int>> neighbours;  // faces sharing a mesh edge
   const double lo = 1.0 / std::sqrt(2.0), hi = std::sqrt(2.0);
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
@@ -101,6 +155,10 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     if (total == 1) ++q.boundary_edges;
     if (total > 2) ++q.nonmanifold_edges;
     if (total == 2 && forward != 1) ++q.orientation_conflicts;  // a manifold edge used twice one way
+    for (size_t u = i + 1; u < j; ++u) {  // faces meeting at this edge share a curve
+      const int fa = m.tri_face[uses[i].second / 3], fb = m.tri_face[uses[u].second / 3];
+      if (fa != fb) neighbours.insert({std::min(fa, fb), std::max(fa, fb)});
+    }
     ++edges;
     const uint32_t use = uses[i].second;
     const double r = per[use / 3].edge_ratio[use % 3];
@@ -108,6 +166,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     i = j;
   }
   q.size_conformity = edges > 0 ? double(conforming) / edges : 0;
+  count_self_intersections(m, neighbours, q);
   return q;
 }
 

@@ -13,6 +13,11 @@
 //   (normal against the oriented surface normal) and zero-area triangles;
 //   largest distance of a node from its face's surface; share of edges with
 //   length / h(midpoint) in [1/sqrt2, sqrt2]; total area.
+//   Triangles under 12 degrees split into forced ones (the smallest angle sits
+//   at a B-rep point where the face's own corner, the angle sum of its
+//   triangles there, is under 12 degrees) and avoidable ones (all others).
+//   Self-intersecting triangle pairs (mesher/self_intersection.h), and of those
+//   the local ones: within one face or between faces that share a curve.
 #pragma once
 
 #include <array>
@@ -29,9 +34,14 @@ struct MeshQuality {
   std::vector<double> min_angle;          // per triangle (degrees)
   std::array<int, 10> histogram{};        // of min_angle, 6-degree bins
   int below_12 = 0, below_24 = 0;
+  int forced_below_12 = 0;                // at a CAD corner itself under 12 degrees
+  int avoidable_below_12 = 0;             // below_12 - forced_below_12
   double worst_angle = 180;
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;
   int inverted = 0, zero_area = 0;
+  long long self_intersections = 0;       // pairs of triangles meeting beyond shared nodes
+  long long local_self_intersections = 0; // of those, in one face or faces sharing a curve
+  std::vector<std::array<int, 2>> intersecting_faces;  // face pairs with local intersections (first 20)
   double max_inner_node_distance = 0;     // nodes inside faces, from their surface
   double max_node_distance = 0;           // every corner, from its face's surface
   double size_conformity = 0;             // share of edges of conforming length

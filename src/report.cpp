@@ -46,6 +46,8 @@ nlohmann::json report_json(const RunReport& r) {
                  {"worst_min_angle_deg", q.worst_angle},
                  {"bad_below_12deg", q.below_12},
                  {"bad_share", q.below_12 / n},
+                 {"forced_below_12deg", q.forced_below_12},
+                 {"avoidable_below_12deg", q.avoidable_below_12},
                  {"low_quality_below_24deg", q.below_24},
                  {"low_quality_share", q.below_24 / n},
                  {"size_conformity", q.size_conformity},
@@ -54,6 +56,9 @@ nlohmann::json report_json(const RunReport& r) {
                  {"orientation_conflicts", q.orientation_conflicts},
                  {"inverted_triangles", q.inverted},
                  {"zero_area_triangles", q.zero_area},
+                 {"self_intersecting_pairs", q.self_intersections},
+                 {"local_self_intersecting_pairs", q.local_self_intersections},
+                 {"locally_intersecting_faces", q.intersecting_faces},
                  {"area", q.area},
                  {"max_inner_node_distance", q.max_inner_node_distance},
                  {"max_node_distance", q.max_node_distance},
@@ -83,10 +88,11 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
   const double n = std::max(1, q.triangles);
   out << "mesh: " << q.triangles << " triangles, " << q.nodes << " nodes\n"
       << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
-      << " (" << 100.0 * q.below_12 / n << "%), below 24 deg: " << q.below_24 << " (" << 100.0 * q.below_24 / n
+      << " (" << 100.0 * q.below_12 / n << "%; " << q.forced_below_12 << " forced by CAD corners), below 24 deg: " << q.below_24 << " (" << 100.0 * q.below_24 / n
       << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
       << "topology: " << q.boundary_edges << " boundary edges, " << q.nonmanifold_edges << " non-manifold edges, "
-      << q.inverted << " inverted triangles\n"
+      << q.inverted << " inverted triangles, " << q.self_intersections << " intersecting triangle pairs ("
+      << q.local_self_intersections << " within a face or across a shared curve)\n"
       << "size queries: " << r.queries.queries << ", " << r.queries.mean_visited()
       << " background triangles visited on average, " << r.queries.fallbacks << " fallbacks\n";
   out << "time:";

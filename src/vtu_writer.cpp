@@ -45,7 +45,9 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& xyz,
   writer->SetInputData(grid);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
-  writer->SetCompressorTypeToLZ4();  // fast; ParaView reads it
+  // zlib, not LZ4: ParaView, meshio and every VTK reader take it; level 1 keeps it fast.
+  writer->SetCompressorTypeToZLib();
+  writer->SetCompressionLevel(1);
   if (writer->Write() != 1) throw Error("cannot write '" + path + "'");
 }
 

@@ -1,0 +1,84 @@
+#include "mesher/self_intersection.h"
+
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <mutex>
+
+#include "geometry/predicates.h"
+#include "geometry/triangle_bvh.h"
+
+namespace sizemesh {
+
+namespace {
+
+bool degenerate(const std::array<Vec3, 3>& c) {
+  const double l2 = (c[1] - c[0]).squaredNorm() + (c[2] - c[1]).squaredNorm() + (c[0] - c[2]).squaredNorm();
+  return !((c[1] - c[0]).cross(c[2] - c[0]).norm() > 1e-12 * l2);
+}
+
+// Triangles s and t (node ids ns, nt; corners cs, ct) meet beyond their shared nodes.
+bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, const std::array<Vec3, 3>& cs,
+                const std::array<Vec3, 3>& ct) {
+  int shared = 0, is = -1, it = -1;  // corners of the (last) shared node
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (ns[i] == nt[j]) {
+        ++shared;
+        is = i;
+        it = j;
+      }
+  if (shared == 0) return triangles_meet(cs, ct);
+  if (shared == 3) return true;
+  if (shared == 1) {
+    // The edge opposite the shared node, of either triangle, meets the other.
+    return segment_meets_triangle(cs[(is + 1) % 3], cs[(is + 2) % 3], ct[0], ct[1], ct[2]) ||
+           segment_meets_triangle(ct[(it + 1) % 3], ct[(it + 2) % 3], cs[0], cs[1], cs[2]);
+  }
+  // A shared edge: the apexes are the corners not shared.
+  int as = 0, at = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (ns[i] != nt[0] && ns[i] != nt[1] && ns[i] != nt[2]) as = i;
+    if (nt[i] != ns[0] && nt[i] != ns[1] && nt[i] != ns[2]) at = i;
+  }
+  const Vec3 &u = cs[(as + 1) % 3], &w = cs[(as + 2) % 3], &a = cs[as], &b = ct[at];
+  if (orient3d_sign(u, w, a, b) != 0) return false;
+  // Coplanar: they overlap when the apexes lie on the same side of the edge
+  // (decided in the projection that drops the dominant axis of the normal).
+  int axis;
+  (w - u).cross(a - u).cwiseAbs().maxCoeff(&axis);
+  auto flat = [axis](const Vec3& x) { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); };
+  const int sa = orient2d_sign(flat(u), flat(w), flat(a)), sb = orient2d_sign(flat(u), flat(w), flat(b));
+  return sa != 0 && sa == sb;
+}
+
+}  // namespace
+
+SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
+  SelfIntersections out;
+  const int nt = static_cast<int>(m.tris.size());
+  if (nt < 2) return out;
+  const TriangleBVH bvh(m.xyz, m.tris);
+  tbb::combinable<long long> count;
+  std::mutex mutex;
+  tbb::parallel_for(tbb::blocked_range<int>(0, nt, 1024), [&](const tbb::blocked_range<int>& r) {
+    long long& mine = count.local();
+    for (int s = r.begin(); s != r.end(); ++s) {
+      const auto& cs = bvh.corners(s);
+      if (degenerate(cs)) continue;  // zero-area triangles are counted apart
+      bvh.overlapping(bvh.box(s), [&](int t) {
+        if (t <= s || degenerate(bvh.corners(t))) return;
+        if (!pair_meets(m.tris[s], m.tris[t], cs, bvh.corners(t))) return;
+        ++mine;
+        std::lock_guard<std::mutex> lock(mutex);
+        if (out.kept.size() < keep) out.kept.push_back({s, t});
+      });
+    }
+  });
+  out.pairs = count.combine([](long long a, long long b) { return a + b; });
+  std::sort(out.kept.begin(), out.kept.end());
+  return out;
+}
+
+}  // namespace sizemesh
