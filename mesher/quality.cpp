@@ -61,21 +61,46 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
   return a;
 }
 
-// Triangles under 12 degrees whose smallest angle sits at a B-rep point where
-// the face's corner (the angle sum of that face's triangles there) is itself
-// under 12 degrees: no triangle there can do better.
+// Triangles under 12 degrees that no mesh of this CAD can avoid: at a sharp
+// corner (a B-rep point where the face's corner, the angle sum of that face's
+// triangles there, is under 12 degrees) either the triangle's smallest angle
+// sits at the corner, or the triangle lies in the corner's wedge, every node
+// on the two curves that meet there: where the wedge is narrower than its
+// boundary segments, a triangle spanning it cannot have larger angles.
 void count_forced_slivers(const SurfaceMesh& m, MeshQuality& q) {
   auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
   std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
   for (size_t t = 0; t < m.tris.size(); ++t)
     for (int k = 0; k < 3; ++k)
       if (m.node_dim[m.tris[t][k]] == 0) corner[key(m.tris[t][k], t)] += corner_angles(m, t)[k];
+  auto sharp = [&](int node, size_t t) { return m.node_dim[node] == 0 && corner[key(node, t)] < 12; };
+  // Per face: its sharp corner nodes and the curves leaving them.
+  std::unordered_map<int, std::set<std::pair<int, int>>> wedge;  // face -> {(dim, entity or node)}
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int node = m.tris[t][k];
+      if (!sharp(node, t)) continue;
+      auto& w = wedge[m.tri_face[t]];
+      w.insert({0, node});
+      for (int j : {1, 2}) {
+        const int other = m.tris[t][(k + j) % 3];
+        if (m.node_dim[other] == 1) w.insert({1, m.node_entity[other]});
+      }
+    }
   for (size_t t = 0; t < m.tris.size(); ++t) {
     if (!(q.min_angle[t] < 12)) continue;
     const auto a = corner_angles(m, t);
     const int k = static_cast<int>(std::min_element(a.begin(), a.end()) - a.begin());
-    const int node = m.tris[t][k];
-    if (m.node_dim[node] == 0 && corner[key(node, t)] < 12) ++q.forced_below_12;
+    bool forced = sharp(m.tris[t][k], t);
+    const auto w = wedge.find(m.tri_face[t]);
+    if (!forced && w != wedge.end()) {
+      forced = true;
+      for (int node : m.tris[t]) {
+        const int dim = m.node_dim[node];
+        forced = forced && dim <= 1 && w->second.count({dim, dim == 0 ? node : m.node_entity[node]});
+      }
+    }
+    q.forced_below_12 += forced;
   }
   q.avoidable_below_12 = q.below_12 - q.forced_below_12;
 }

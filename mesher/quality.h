@@ -13,9 +13,11 @@
 //   (normal against the oriented surface normal) and zero-area triangles;
 //   largest distance of a node from its face's surface; share of edges with
 //   length / h(midpoint) in [1/sqrt2, sqrt2]; total area.
-//   Triangles under 12 degrees split into forced ones (the smallest angle sits
-//   at a B-rep point where the face's own corner, the angle sum of its
-//   triangles there, is under 12 degrees) and avoidable ones (all others).
+//   Triangles under 12 degrees split into forced ones and avoidable ones: at a
+//   B-rep point where the face's own corner (the angle sum of its triangles
+//   there) is under 12 degrees, a triangle whose smallest angle sits at that
+//   point, or whose nodes all lie on the two curves meeting there (spanning
+//   the corner's narrow wedge), is forced by the CAD.
 //   Self-intersecting triangle pairs (mesher/self_intersection.h), and of those
 //   the local ones: within one face or between faces that share a curve.
 #pragma once

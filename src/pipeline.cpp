@@ -7,6 +7,7 @@
 
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
+#include "mesher/target_sizes.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/triangle_estimate.h"
@@ -40,6 +41,17 @@ void check_triangle_budget(const TriangleEstimate& e, double max_triangles, cons
       << max_triangles << " (h_min " << h.h_min << ", h_max " << h.h_max << "); most come from sizes set by "
       << limit_name(e.dominant()) << ": raise " << option << ", or --max-triangles";
   throw Error(msg.str());
+}
+
+// Triangles crossing within a face or across a shared curve: the front never
+// makes them where the CAD is sound, so they point at faces that cross
+// themselves or their neighbours.
+void warn_local_intersections(const MeshQuality& q) {
+  if (q.local_self_intersections == 0) return;
+  std::cerr << "sizemesh: warning: " << q.local_self_intersections
+            << " pairs of triangles intersect within a face or across a shared curve (faces";
+  for (const auto& [a, b] : q.intersecting_faces) std::cerr << " " << a << (a == b ? "" : "/" + std::to_string(b));
+  std::cerr << "): the CAD surfaces there likely cross\n";
 }
 
 }  // namespace
@@ -97,26 +109,14 @@ int run(const RunOptions& o) {
     report.mesh = &mesh;
     report.quality = mesh_quality(mesh, model, query);
     clock.lap("quality");
-    // Target size per node, from the uv the node has in one of its triangles' faces.
-    std::vector<double> target(mesh.xyz.size(), -1.0);
-    int hint = -1;
-    for (size_t t = 0; t < mesh.tris.size(); ++t) {
-      if (t > 0 && mesh.tri_face[t] != mesh.tri_face[t - 1]) hint = -1;  // hints are per face
-      for (int k = 0; k < 3; ++k) {
-        double& h_node = target[mesh.tris[t][k]];
-        if (h_node >= 0) continue;
-        const SizeQuery::Hit hit = query.locate(mesh.tri_face[t], mesh.tri_uv[t][k], hint);
-        h_node = hit.h;
-        hint = hit.tri;
-      }
-    }
-    write_mesh(o.output, mesh, report.quality.min_angle, target);
+    write_mesh(o.output, mesh, report.quality.min_angle, target_sizes(mesh, query));
     clock.lap("output");
     if (o.verbose) print_mesh_summary(report, std::cout);
   }
   if (!o.report.empty()) write_report(o.report, report);
   for (const auto& f : mesh.failures)
     std::cerr << "sizemesh: warning: face " << f.face << " was not meshed: " << f.reason << "\n";
+  warn_local_intersections(report.quality);
   return mesh.failures.empty() ? kOk : kPartial;
 }
 

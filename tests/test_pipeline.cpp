@@ -85,6 +85,8 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
       CHECK(j["mesher"]["front_steps"].get<double>() <= 2 * tris);
       CHECK(std::abs(j["mesher"]["estimated_triangles"].get<double>() / tris - 1) <= 0.3);
       CHECK(m["bad_share"].get<double>() < sm.max_bad_share);  // min angle < 12 deg
+      CHECK(m["avoidable_below_12deg"].get<int>() <= sm.max_avoidable_bad);
+      CHECK(m["forced_below_12deg"].get<int>() + m["avoidable_below_12deg"].get<int>() == m["bad_below_12deg"].get<int>());
       CHECK(m["low_quality_share"].get<double>() < 0.005);  // min angle < 24 deg
       CHECK(m["size_conformity"].get<double>() >= 0.90);
       const double cad = j["model"]["cad_area"], area = m["area"];
