@@ -26,6 +26,8 @@ struct ModelInfo {
   int free_curves_before_sewing = 0;
   int free_curves_after_sewing = 0;
   bool sewn = false;       // sewing was run
+  int entities_failed = 0;     // file entities the reader could not read or translate
+  std::string first_failure;   // the first of them: "entity #26 (AXIS2_PLACEMENT_3D): <reason>"
   double diagonal() const { return (bbox_max - bbox_min).norm(); }
 };
 

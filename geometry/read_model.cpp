@@ -5,7 +5,11 @@
 #include <IGESControl_Reader.hxx>
 #include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESModel.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
+#include <StepData_StepModel.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
@@ -154,18 +158,61 @@ std::pair<std::string, std::string> iges_unit(int flag) {
   }
 }
 
+// Entities the reader failed on, while parsing (references, parameters) or
+// translating (geometry it could not build): their count and the first one,
+// named by its number in the file (STEP #id, IGES directory entry D-line).
+void note_failures(const Handle(XSControl_WorkSession)& ws, ModelInfo& info) {
+  if (ws.IsNull() || ws->Model().IsNull()) return;
+  const Handle(Interface_InterfaceModel) model = ws->Model();
+  const Handle(StepData_StepModel) step = Handle(StepData_StepModel)::DownCast(model);
+  std::vector<Interface_CheckIterator> lists = {ws->ModelCheckList()};
+  if (!ws->TransferReader().IsNull()) lists.push_back(ws->TransferReader()->LastCheckList());
+  for (const Interface_CheckIterator& list : lists)
+    for (list.Start(); list.More(); list.Next()) {
+      const Handle(Interface_Check)& check = list.Value();
+      if (check.IsNull() || !check->HasFailed()) continue;
+      if (info.entities_failed++ > 0) continue;
+      const int num = list.Number();
+      Handle(Standard_Transient) ent = check->Entity();
+      if (ent.IsNull() && num > 0 && num <= model->NbEntities()) ent = model->Value(num);
+      std::string where;
+      if (!ent.IsNull()) {
+        where = step.IsNull() ? "directory entry D" + std::to_string(2 * model->Number(ent) - 1)
+                              : "entity #" + std::to_string(step->IdentLabel(ent));
+        where += std::string(" (") + model->TypeName(ent, Standard_False) + ")";
+      } else if (num > 0) {
+        where = "entity number " + std::to_string(num);
+      }
+      const char* why = check->CFail(1);
+      info.first_failure = (where.empty() ? "" : where + ": ") + (why && *why ? why : "unreadable");
+    }
+}
+
+// " (N entities could not be read; the first, ...)" or "".
+std::string failure_note(const ModelInfo& info) {
+  if (info.entities_failed == 0) return "";
+  return " (" + std::to_string(info.entities_failed) + (info.entities_failed == 1 ? " entity" : " entities") +
+         " could not be read; first: " + info.first_failure + ")";
+}
+
 TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
                        std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
   STEPControl_Reader reader;
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
-    throw Error("cannot parse STEP file '" + path + "' (truncated or malformed)");
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+    note_failures(reader.WS(), info);
+    throw Error("cannot parse STEP file '" + path + "' (truncated or malformed)" + failure_note(info));
+  }
   TColStd_SequenceOfAsciiString length_units, angle_units, solid_angle_units;
   reader.FileUnits(length_units, angle_units, solid_angle_units);
   auto unit = step_unit(length_units.IsEmpty() ? "MILLIMETRE" : length_units.First().ToCString());
   info.unit = unit.first;
   set_target_unit(unit.second);
-  if (reader.NbRootsForTransfer() == 0) throw Error("STEP file '" + path + "' contains no geometry");
+  if (reader.NbRootsForTransfer() == 0) {
+    note_failures(reader.WS(), info);
+    throw Error("STEP file '" + path + "' contains no geometry" + failure_note(info));
+  }
   reader.TransferRoots();
+  note_failures(reader.WS(), info);
   TopoDS_Shape shape = reader.OneShape();
   // Entity names (faces and solids), when the file gives them.
   Handle(XSControl_TransferReader) tr = reader.WS()->TransferReader();
@@ -186,12 +233,18 @@ TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
 TopoDS_Shape read_iges(const std::string& path, ModelInfo& info) {
   set_target_unit("MM");
   IGESControl_Reader reader;
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
-    throw Error("cannot parse IGES file '" + path + "' (truncated or malformed)");
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+    note_failures(reader.WS(), info);
+    throw Error("cannot parse IGES file '" + path + "' (truncated or malformed)" + failure_note(info));
+  }
   auto unit = iges_unit(reader.IGESModel()->GlobalSection().UnitFlag());
   info.unit = unit.first;
-  if (reader.NbRootsForTransfer() == 0) throw Error("IGES file '" + path + "' contains no geometry");
+  if (reader.NbRootsForTransfer() == 0) {
+    note_failures(reader.WS(), info);
+    throw Error("IGES file '" + path + "' contains no geometry" + failure_note(info));
+  }
   reader.TransferRoots();
+  note_failures(reader.WS(), info);
   TopoDS_Shape shape = reader.OneShape();
   const double scale = 1.0 / unit_in_mm(unit.second);
   if (scale == 1.0 || shape.IsNull()) return shape;
@@ -247,7 +300,7 @@ Model load_model(const std::string& path, const LoadOptions& options) {
       default: shape = read_brep(path, info); break;
     }
     if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
-      throw Error("'" + path + "' contains no surfaces to mesh");
+      throw Error("'" + path + "' contains no surfaces to mesh" + failure_note(info));
     return model_from_shape(shape, info, options, names);
   } catch (const Standard_Failure& e) {
     const char* why = e.GetMessageString();

@@ -21,6 +21,8 @@ void print_info(const Model& model, std::ostream& out) {
       << "points:      " << i.points << "\n"
       << "free curves: " << i.free_curves_before_sewing << " before sewing, " << i.free_curves_after_sewing
       << " after" << (i.sewn ? "" : " (not sewn)") << "\n";
+  if (i.entities_failed)
+    out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";
   int named = 0;
   for (int f = 1; f <= i.faces; ++f)
     if (!model.face_name(f).empty()) out << (named++ ? ", " : "named faces: ") << f << " '" << model.face_name(f) << "'";

@@ -71,6 +71,10 @@ int run(const RunOptions& o) {
   RunReport report;
   Progress clock(o.verbose, report.seconds);
   Model model = load_model(o.input, o.load);                                   // geometry/
+  if (model.info().entities_failed > 0)
+    std::cerr << "sizemesh: warning: " << model.info().entities_failed
+              << " entities could not be read and are left out of the mesh; first: " << model.info().first_failure
+              << "\n";
   clock.lap("load");
   BackgroundMesh bg = build_background_mesh(model, o.tessellation);            // geometry/ (paper 3.1)
   clock.lap("background");

@@ -16,7 +16,8 @@ nlohmann::json report_json(const RunReport& r) {
                 {"diagonal", info.diagonal()},
                 {"file", info.path},       {"format", info.format},   {"unit", info.unit},
                 {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
-                {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing}};
+                {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing},
+                {"entities_failed", info.entities_failed}, {"first_failed_entity", info.first_failure}};
   j["background"] = {{"triangles", r.background_triangles},
                      {"vertices", r.background_vertices},
                      {"tessellation_vertices", r.refinement.vertices_before},

@@ -185,6 +185,21 @@ TEST_CASE("a STEP entity without its CARTESIAN_POINT, and cut IGES records, end 
   CHECK(r.err.find("truncated") != std::string::npos);
 }
 
+TEST_CASE("entities the reader fails on are named by their number in the file", "[fuzz]") {
+  const std::string text = sizemesh::test::slurp(sizemesh::test::model_path("cone70_capsule_sting.step"));
+  // #59 is an EDGE_CURVE whose end vertex #60 is made an entity of an unknown type.
+  const size_t at = text.find("\n#60 = VERTEX_POINT");
+  REQUIRE(at != std::string::npos);
+  const std::string bad = scratch("bad_vertex.step");
+  write_file(bad, text.substr(0, at) + "\n#60 = XYZ_UNKNOWN(1);\n#6000 = " + text.substr(at + 7));
+  const auto r = sizemesh::test::run_sizemesh("-q -o " + scratch("x.vtu") + " " + bad, 20);
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err_lines() == 1);
+  CHECK(r.err.find("entity #59 (EDGE_CURVE)") != std::string::npos);
+  fs::remove(bad);
+}
+
 TEST_CASE("named bad inputs give one error line and the documented exit code", "[fuzz]") {
   const std::string model = sizemesh::test::model_path("hemisphere_cylinder_domain.stp");
   const std::string empty = scratch("empty.step"), binary = scratch("binary.stp"), fifo = scratch("pipe.step");
