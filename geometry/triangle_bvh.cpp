@@ -223,22 +223,5 @@ TriangleBVH::Closest TriangleBVH::closest(const Vec3& p) const {
   return best;
 }
 
-void TriangleBVH::overlapping(const Box& query, const std::function<void(int)>& visit) const {
-  if (nodes_.empty()) return;
-  int stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (!n.box.intersects(query)) continue;
-    if (n.left < 0) {
-      for (int i = n.begin; i < n.end; ++i)
-        if (boxes_[order_[i]].intersects(query)) visit(order_[i]);
-    } else if (top + 2 <= 128) {
-      stack[top++] = n.left;
-      stack[top++] = n.right;
-    }
-  }
-}
 
 }  // namespace sizemesh

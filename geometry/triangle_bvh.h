@@ -49,7 +49,24 @@ class TriangleBVH {
   Closest closest(const Vec3& p) const;
 
   // Calls visit(tri) for every triangle whose bounding box overlaps `query`.
-  void overlapping(const Box& query, const std::function<void(int)>& visit) const;
+  template <class Visit>
+  void overlapping(const Box& query, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!n.box.intersects(query)) continue;
+      if (n.left < 0) {
+        for (int i = n.begin; i < n.end; ++i)
+          if (boxes_[order_[i]].intersects(query)) visit(order_[i]);
+      } else if (top + 2 <= 128) {
+        stack[top++] = n.left;
+        stack[top++] = n.right;
+      }
+    }
+  }
 
   // Closest point of triangle abc to p, as barycentric weights of a, b, c.
   static Vec3 closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);

@@ -18,6 +18,30 @@ bool degenerate(const std::array<Vec3, 3>& c) {
   return !((c[1] - c[0]).cross(c[2] - c[0]).norm() > 1e-12 * l2);
 }
 
+// Projection that drops the dominant axis of triangle c's normal (c is not
+// degenerate there, so only its own points project onto its corners).
+struct Flat {
+  int axis;
+  explicit Flat(const std::array<Vec3, 3>& c) { (c[1] - c[0]).cross(c[2] - c[0]).cwiseAbs().maxCoeff(&axis); }
+  Vec2 operator()(const Vec3& x) const { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); }
+};
+
+// Triangles sharing only corner v: a line through v along one of their edges
+// at v with one triangle strictly on each side (in s's projection) shows they
+// meet only at v: a point of both would project into both. Sides are exact.
+bool fan_neighbours_apart(const std::array<Vec3, 3>& cs, int is, const std::array<Vec3, 3>& ct, int it) {
+  const Flat flat(cs);
+  const Vec2 v = flat(cs[is]);
+  const Vec2 s1 = flat(cs[(is + 1) % 3]), s2 = flat(cs[(is + 2) % 3]);
+  const Vec2 t1 = flat(ct[(it + 1) % 3]), t2 = flat(ct[(it + 2) % 3]);
+  auto separates = [&](const Vec2& e, const Vec2& own, const Vec2& o1, const Vec2& o2) {
+    const int side = orient2d_sign(v, e, own);
+    return side != 0 && orient2d_sign(v, e, o1) == -side && orient2d_sign(v, e, o2) == -side;
+  };
+  return separates(s1, s2, t1, t2) || separates(s2, s1, t1, t2) || separates(t1, t2, s1, s2) ||
+         separates(t2, t1, s1, s2);
+}
+
 // Triangles s and t (node ids ns, nt; corners cs, ct) meet beyond their shared nodes.
 bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, const std::array<Vec3, 3>& cs,
                 const std::array<Vec3, 3>& ct) {
@@ -32,6 +56,7 @@ bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, cons
   if (shared == 0) return triangles_meet(cs, ct);
   if (shared == 3) return true;
   if (shared == 1) {
+    if (fan_neighbours_apart(cs, is, ct, it)) return false;
     // The edge opposite the shared node, of either triangle, meets the other.
     return segment_meets_triangle(cs[(is + 1) % 3], cs[(is + 2) % 3], ct[0], ct[1], ct[2]) ||
            segment_meets_triangle(ct[(it + 1) % 3], ct[(it + 2) % 3], cs[0], cs[1], cs[2]);
@@ -43,14 +68,13 @@ bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, cons
     if (nt[i] != ns[0] && nt[i] != ns[1] && nt[i] != ns[2]) at = i;
   }
   const Vec3 &u = cs[(as + 1) % 3], &w = cs[(as + 2) % 3], &a = cs[as], &b = ct[at];
-  if (orient3d_sign(u, w, a, b) != 0) return false;
-  // Coplanar: they overlap when the apexes lie on the same side of the edge
-  // (decided in the projection that drops the dominant axis of the normal).
-  int axis;
-  (w - u).cross(a - u).cwiseAbs().maxCoeff(&axis);
-  auto flat = [axis](const Vec3& x) { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); };
+  // They overlap only when coplanar with the apexes on the same side of the
+  // edge (sides in s's projection, exact where coplanar); the side test is
+  // cheap and usually settles it before the coplanarity test.
+  const Flat flat(cs);
   const int sa = orient2d_sign(flat(u), flat(w), flat(a)), sb = orient2d_sign(flat(u), flat(w), flat(b));
-  return sa != 0 && sa == sb;
+  if (sa == 0 || sa != sb) return false;
+  return orient3d_sign(u, w, a, b) == 0;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "geometry/types.h"
+#include "sizing/options.h"
 
 namespace sizemesh {
 
@@ -115,24 +116,19 @@ void read_config(const std::string& path, SizingParams& p) {
     throw Error("config file '" + path + "' is not valid JSON: " + e.what());
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
-  static const std::set<std::string> known = {"phi_c",      "mu_d",      "beta",      "h_min",   "h_max",
-                                              "deviation", "proximity", "local_proximity", "refine_background", "max_triangles", "curve_phi_c", "face_phi_c", "face_mu_d",
-                                              "face_beta",  "point_size", "curve_size", "face_size"};
+  std::set<std::string> known = {"curve_phi_c", "face_phi_c", "face_mu_d", "face_beta",
+                                 "point_size",  "curve_size", "face_size"};
+  for (const SizingOption& o : sizing_options()) known.insert(o.key);
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
-  if (j.contains("phi_c")) p.phi_c_deg = number(j["phi_c"], "phi_c");
-  if (j.contains("mu_d")) p.mu_d = number(j["mu_d"], "mu_d");
-  if (j.contains("beta")) p.beta = number(j["beta"], "beta");
-  if (j.contains("h_min")) p.h_min = number(j["h_min"], "h_min");
-  if (j.contains("h_max")) p.h_max = number(j["h_max"], "h_max");
-  if (j.contains("deviation")) p.deviation = number(j["deviation"], "deviation");
-  if (j.contains("max_triangles")) p.max_triangles = number(j["max_triangles"], "max_triangles");
-  for (auto [key, flag] : {std::pair{"proximity", &p.proximity}, {"local_proximity", &p.local_proximity},
-                           {"refine_background", &p.refine_background}})
-    if (j.contains(key)) {
-      if (!j[key].is_boolean()) throw Error(std::string("config: ") + key + " must be true or false");
-      *flag = j[key].get<bool>();
+  for (const SizingOption& o : sizing_options()) {
+    if (!j.contains(o.key)) continue;
+    if (o.number) p.*o.number = number(j[o.key], o.key);
+    if (o.on) {
+      if (!j[o.key].is_boolean()) throw Error("config: " + o.key + " must be true or false");
+      p.*o.on = j[o.key].get<bool>();
     }
+  }
   if (j.contains("curve_phi_c")) read_map(j["curve_phi_c"], "curve_phi_c", p.curve_phi_c_deg, number);
   if (j.contains("face_phi_c")) read_map(j["face_phi_c"], "face_phi_c", p.face_phi_c_deg, number);
   if (j.contains("face_mu_d")) read_map(j["face_mu_d"], "face_mu_d", p.face_mu_d, number);

@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "sizing/options.h"
 #include "src/info.h"
 #include "src/pipeline.h"
 
@@ -45,31 +46,16 @@ int main(int argc, char** argv) {
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
   auto* sizing = "sizing (paper 3.4; h_min/h_max default to 1e-3 and 0.05 of the bounding-box diagonal)";
-  app.add_option("--phi-c", o.sizing.phi_c_deg, "curvature: central angle per element, degrees, in (0, 180)")
-      ->capture_default_str()->group(sizing);
-  app.add_option("--mu-d", o.sizing.mu_d, "proximity: elements across a thin region, > 0")
-      ->capture_default_str()->group(sizing);
-  app.add_option("--beta", o.sizing.beta, "gradation: largest size ratio between neighbouring elements, >= 1")
-      ->capture_default_str()->group(sizing);
-  app.add_option("--h-min", o.sizing.h_min, "smallest element size (model units)")->group(sizing);
-  app.add_option("--h-max", o.sizing.h_max, "largest element size (model units)")->group(sizing);
-  app.add_option("--deviation", o.sizing.deviation,
-                 "curvature: largest chord height of an element edge off the surface (model units; 0: no bound)")
-      ->group(sizing);
-  app.add_flag("!--no-proximity", o.sizing.proximity,
-               "size from curvature (and user sizes) alone: no face width, curve length or gap sizes")
-      ->group(sizing);
-  app.add_flag("!--no-gaps", o.sizing.local_proximity,
-               "do not refine thin gaps between faces (plates, blunt trailing edges, part gaps)")->group(sizing);
-  app.add_flag("!--no-refine-background", o.sizing.refine_background,
-               "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow")
-      ->group(sizing);
-  app.add_option("--max-triangles", o.sizing.max_triangles,
-                 "refuse, before meshing, a size map that asks for more triangles (an estimate from the map)")
-      ->capture_default_str()->check(CLI::Range(1.0, 1e15))->group(sizing);
+  for (const SizingOption& opt : sizing_options()) {
+    CLI::Option* cli = opt.on ? app.add_flag("!" + opt.flag, o.sizing.*opt.on, opt.help)
+                              : app.add_option(opt.flag, o.sizing.*opt.number, opt.help);
+    if (opt.number && o.sizing.*opt.number != 0) cli->capture_default_str();
+    if (opt.cli_lo < opt.cli_hi) cli->check(CLI::Range(opt.cli_lo, opt.cli_hi));
+    cli->group(sizing);
+  }
   app.add_option("--config", o.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
-                 "(see examples/sizing.json)")->group(sizing);
+                 "(see examples/sizing.json); a flag given on the command line wins over the file")->group(sizing);
   std::string solver = "exact";
   app.add_option("--smoother", solver, "edge-gradation solver: exact (Dijkstra) or lpsolve (reference LP)")
       ->capture_default_str()->check(CLI::IsMember({"exact", "lpsolve"}))->group(sizing);
@@ -83,6 +69,8 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   o.edge_solver = solver == "lpsolve" ? EdgeSolver::LpSolve : EdgeSolver::Dijkstra;
+  for (const SizingOption& opt : sizing_options())
+    if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);
   try {
     if (info_only) {
       print_info(load_model(o.input, o.load), std::cout);

@@ -8,6 +8,7 @@
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
 #include "mesher/target_sizes.h"
+#include "sizing/options.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/triangle_estimate.h"
@@ -66,7 +67,7 @@ int run(const RunOptions& o) {
   }
   if (!o.report.empty()) check_writable(o.report);
   SizingParams params = o.sizing;
-  if (!o.config.empty()) read_config(o.config, params);
+  if (!o.config.empty()) apply_config(o.config, o.sizing_from_cli, params);
 
   RunReport report;
   Progress clock(o.verbose, report.seconds);

@@ -1,6 +1,7 @@
 // The paper's flow from CAD file to mesh, one named step after another.
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "geometry/background_mesh.h"
@@ -20,6 +21,7 @@ struct RunOptions {
   BackgroundOptions tessellation;
   SizingParams sizing;
   std::string config;       // JSON config (globals and local sizes); empty: none
+  std::set<std::string> sizing_from_cli;  // keys of sizing options given as flags: they win over the config
   EdgeSolver edge_solver = EdgeSolver::Dijkstra;
   MeshOptions meshing;
   bool verbose = true;

@@ -4,6 +4,9 @@
 #include <fstream>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
+#include "sizing/options.h"
 #include "tests/cli_runner.h"
 #include "tests/test_models.h"
 
@@ -68,6 +71,15 @@ TEST_CASE("help documents every option and version prints the version") {
   for (const char* opt : {"--output", "--background", "--info", "--no-sew", "--sew-tolerance", "--deflection",
                           "--angle", "--version", "--quiet"})
     CHECK(help.out.find(opt) != std::string::npos);
+  // The sizing options come from one table: each is in --help and in the
+  // README's table with its config key.
+  const std::string readme = test::slurp(SIZEMESH_README);
+  for (const SizingOption& opt : sizing_options()) {
+    INFO(opt.flag);
+    CHECK(help.out.find(opt.flag) != std::string::npos);
+    CHECK(readme.find("| `" + opt.flag + "` | `" + opt.key + "` |") != std::string::npos);
+  }
+  CHECK(help.out.find("a flag given on the command line wins over the file") != std::string::npos);
   const auto version = test::run_sizemesh("--version");
   CHECK(version.status == 0);
   CHECK(version.out.rfind("sizemesh ", 0) == 0);
@@ -92,4 +104,25 @@ TEST_CASE("the background mesh is written as .vtu with classification fields") {
   CHECK(vtu.find("classification_id") != std::string::npos);
   CHECK(vtu.find("face_id") != std::string::npos);
   fs::remove(out);
+}
+
+TEST_CASE("a flag on the command line wins over the config file; the file's other keys still apply") {
+  const fs::path dir = fs::temp_directory_path() / ("sizemesh_cfg_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "c.json") << R"({"h_min": 2.0, "h_max": 20.0, "beta": 1.3})";
+  const std::string model = test::model_path("hemisphere_cylinder_domain.stp");
+  auto sizing = [&](const std::string& flags) {
+    const auto r = test::run_sizemesh("-q --config " + (dir / "c.json").string() + " " + flags + " --report " +
+                                      (dir / "r.json").string() + " -o " + (dir / "m.vtu").string() + " " + model);
+    INFO(r.err);
+    CHECK(r.status == 0);
+    return nlohmann::json::parse(test::slurp((dir / "r.json").string()))["sizing"];
+  };
+  const auto from_file = sizing("");
+  CHECK(from_file["h_min"].get<double>() == 2.0);
+  CHECK(from_file["h_max"].get<double>() == 20.0);
+  const auto with_flag = sizing("--h-min 3 --no-refine-background");
+  CHECK(with_flag["h_min"].get<double>() == 3.0);   // the flag
+  CHECK(with_flag["h_max"].get<double>() == 20.0);  // the file
+  fs::remove_all(dir);
 }

@@ -1,0 +1,32 @@
+// The global sizing options in one table: name, member, default (the
+// member's initial value), help text, and the command-line range check where
+// the command line refuses a value itself (exit 2) rather than the
+// validation (exit 1). The table drives the command line (src/main.cpp), the
+// config file's global keys (sizing/params.cpp), and the README's option
+// list is checked against it by a test.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "sizing/params.h"
+
+namespace sizemesh {
+
+struct SizingOption {
+  std::string key;                        // config key
+  std::string flag;                       // command-line flag
+  double SizingParams::*number = nullptr;  // a number, or
+  bool SizingParams::*on = nullptr;        // a switch, on by default: the flag turns it off
+  std::string help;
+  double cli_lo = 0, cli_hi = 0;          // command-line range when cli_lo < cli_hi
+};
+
+const std::vector<SizingOption>& sizing_options();
+
+// Reads the JSON config at `path` into p; the options named in `from_cli`
+// (keys) keep the values p had: a flag on the command line wins over the file.
+void apply_config(const std::string& path, const std::set<std::string>& from_cli, SizingParams& p);
+
+}  // namespace sizemesh
