@@ -45,7 +45,8 @@ def main():
     a = ap.parse_args()
     binary = os.path.join(a.build, "sizemesh")
     print(f"{'model':32s} {'exit':>4s} {'wall s':>7s} {'peak MB':>8s} {'estimate':>10s} {'triangles':>10s} "
-          f"{'est/act':>7s} {'steps/tri':>9s} {'failed':>6s} {'inverted':>8s} {'<12deg':>7s}")
+          f"{'est/act':>7s} {'steps/tri':>9s} {'failed':>6s} {'inverted':>8s} {'<12deg':>7s} {'avoidable':>9s} "
+          f"{'crossing':>8s} {'local':>6s}")
     with tempfile.TemporaryDirectory() as tmp:
         for f in a.files:
             code, wall, peak, j = run(binary, os.path.join(a.models, f), a.threads, tmp)
@@ -54,7 +55,9 @@ def main():
             ratio = est / tris if tris else float("nan")
             print(f"{f:32s} {code:4d} {wall:7.2f} {peak:8.0f} {est:10.0f} {tris:10d} {ratio:7.3f} "
                   f"{mesher.get('front_steps_per_triangle', float('nan')):9.3f} {len(mesh.get('failed_faces', [])):6d} "
-                  f"{mesh.get('inverted_triangles', -1):8d} {mesh.get('bad_below_12deg', -1):7d}")
+                  f"{mesh.get('inverted_triangles', -1):8d} {mesh.get('bad_below_12deg', -1):7d} "
+                  f"{mesh.get('avoidable_below_12deg', -1):9d} {mesh.get('self_intersecting_pairs', -1):8d} "
+                  f"{mesh.get('local_self_intersecting_pairs', -1):6d}")
             sys.stdout.flush()
 
 
