@@ -70,8 +70,8 @@ int orient3d_exact(const Array& r) {
 }  // namespace
 
 // Filter after Shewchuk (1997): the rounded determinant is trusted when it
-// exceeds (7 + 56 eps) eps times the permanent; otherwise it is recomputed in
-// rational arithmetic, which is exact for double inputs.
+// exceeds (7 + 56 eps) eps times the permanent; otherwise it is recomputed
+// exactly (scaled integers, or rationals for inputs of very wide range).
 int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 ad = a - d, bd = b - d, cd = c - d;
   const double m1 = bd.y() * cd.z(), m2 = bd.z() * cd.y();
@@ -124,9 +124,7 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
   const int dp = orient3d_sign(a, b, c, p), dq = orient3d_sign(a, b, c, q);
   if (dp * dq > 0) return false;
   if (dp == 0 && dq == 0) {
-    int axis;
-    (b - a).cross(c - a).cwiseAbs().maxCoeff(&axis);
-    auto flat = [axis](const Vec3& x) { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); };
+    const DominantProjection flat(a, b, c);
     const Vec2 P = flat(p), Q = flat(q), A = flat(a), B = flat(b), C = flat(c);
     if (segments_touch_exact(P, Q, A, B) || segments_touch_exact(P, Q, B, C) || segments_touch_exact(P, Q, C, A))
       return true;

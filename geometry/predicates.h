@@ -24,18 +24,42 @@ inline double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / l;
 }
 
-// Smallest interior angle of a space triangle (degrees).
-inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+// Interior angles of a space triangle at a, b, c (degrees; 0 at a corner
+// with a zero-length edge).
+inline std::array<double, 3> corner_angles_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 p[3] = {a, b, c};
-  double best = 180;
+  std::array<double, 3> angle{};
   for (int k = 0; k < 3; ++k) {
     const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    const double nu = u.norm(), nv = v.norm();
-    if (!(nu > 0 && nv > 0)) return 0;
-    best = std::min(best, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
+    angle[k] = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
   }
-  return best;
+  return angle;
 }
+
+// Smallest interior angle of a space triangle (degrees; 0 with a zero-length edge).
+inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  if (!((b - a).norm() > 0 && (c - b).norm() > 0 && (a - c).norm() > 0)) return 0;
+  const auto angle = corner_angles_deg(a, b, c);
+  return std::min({180.0, angle[0], angle[1], angle[2]});
+}
+
+// A triangle of zero area: twice its area is not above 1e-12 of its summed
+// squared edge lengths (the quality report's and the intersection check's test).
+inline bool zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double l2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  return !((b - a).cross(c - a).norm() > 1e-12 * l2);
+}
+
+// The projection to uv that drops the dominant axis of the normal of triangle
+// (a, b, c): a non-degenerate triangle stays non-degenerate, and only its own
+// points project onto it.
+struct DominantProjection {
+  int axis = 0;
+  DominantProjection(const Vec3& a, const Vec3& b, const Vec3& c) {
+    (b - a).cross(c - a).cwiseAbs().maxCoeff(&axis);
+  }
+  Vec2 operator()(const Vec3& x) const { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); }
+};
 
 // True when uv segments p1p2 and q1q2 cross or touch (collinear overlap included).
 inline bool segments_meet(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
@@ -56,7 +80,6 @@ inline bool segments_meet(const Vec2& p1, const Vec2& p2, const Vec2& q1, const 
   if (std::abs(d4) <= tol && within(p1, p2, q2)) return true;
   return false;
 }
-
 
 // True when closed uv segments ab and cd touch, without tolerance (touching counts).
 inline bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
@@ -90,7 +113,8 @@ inline double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, cons
 
 // Sign (-1, 0, 1) of six times the signed volume of (a, b, c, d): > 0 when d
 // lies below the plane of a, b, c seen counter-clockwise from above. Exact: a
-// floating-point filter, and rational arithmetic when the filter cannot tell.
+// floating-point filter, and exact integer (or rational) arithmetic when the
+// filter cannot tell.
 int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 // Sign of twice the signed area of uv points (a, b, c), exact as orient3d_sign.

@@ -5,8 +5,7 @@
 
 namespace sizemesh {
 
-TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& tris)
-{
+TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& tris) {
   const int n = static_cast<int>(tris.size());
   corners_.resize(n);
   order_.resize(n);
@@ -119,10 +118,6 @@ TriangleBVH::Hit TriangleBVH::ray(const Vec3& origin, const Vec3& dir, double t_
   return best;
 }
 
-}  // namespace sizemesh
-
-namespace sizemesh {
-
 // Ericson's closest point on a triangle, by Voronoi regions.
 Vec3 TriangleBVH::closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -183,11 +178,6 @@ std::vector<std::pair<int, double>> TriangleBVH::nearest(const Vec3& p, double s
   return found;
 }
 
-}  // namespace sizemesh
-
-namespace sizemesh {
-
-
 namespace {
 // Squared distance from p to an axis-aligned box (0 inside).
 double box_distance2(const Vec3& p, const Eigen::AlignedBox3d& b) {
@@ -222,6 +212,5 @@ TriangleBVH::Closest TriangleBVH::closest(const Vec3& p) const {
   }
   return best;
 }
-
 
 }  // namespace sizemesh

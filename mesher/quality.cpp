@@ -28,9 +28,8 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
   const auto& tr = m.tris[t];
   const Vec3 &a = m.xyz[tr[0]], &b = m.xyz[tr[1]], &c = m.xyz[tr[2]];
   const Vec3 n = (b - a).cross(c - a);
-  const double l2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
   r.area = 0.5 * n.norm();
-  r.zero_area = !(n.norm() > 1e-12 * l2);
+  r.zero_area = zero_area(a, b, c);
   // Against the surface normal at the uv centroid, oriented as in the shell.
   const int f = m.tri_face[t];
   const auto& uv = m.tri_uv[t];
@@ -52,13 +51,7 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
 
 // Angles of triangle t at its corners (degrees).
 std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
-  std::array<double, 3> a{};
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& p = m.xyz[m.tris[t][k]];
-    const Vec3 u = m.xyz[m.tris[t][(k + 1) % 3]] - p, v = m.xyz[m.tris[t][(k + 2) % 3]] - p;
-    a[k] = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
-  }
-  return a;
+  return corner_angles_deg(m.xyz[m.tris[t][0]], m.xyz[m.tris[t][1]], m.xyz[m.tris[t][2]]);
 }
 
 // Triangles under 12 degrees that no mesh of this CAD can avoid: at a sharp
@@ -70,9 +63,13 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 void count_forced_slivers(const SurfaceMesh& m, MeshQuality& q) {
   auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
   std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
-  for (size_t t = 0; t < m.tris.size(); ++t)
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    const auto& tr = m.tris[t];
+    if (m.node_dim[tr[0]] != 0 && m.node_dim[tr[1]] != 0 && m.node_dim[tr[2]] != 0) continue;
+    const auto a = corner_angles(m, t);
     for (int k = 0; k < 3; ++k)
-      if (m.node_dim[m.tris[t][k]] == 0) corner[key(m.tris[t][k], t)] += corner_angles(m, t)[k];
+      if (m.node_dim[tr[k]] == 0) corner[key(tr[k], t)] += a[k];
+  }
   auto sharp = [&](int node, size_t t) { return m.node_dim[node] == 0 && corner[key(node, t)] < 12; };
   // Per face: its sharp corner nodes and the curves leaving them.
   std::unordered_map<int, std::set<std::pair<int, int>>> wedge;  // face -> {(dim, entity or node)}

@@ -13,24 +13,11 @@ namespace sizemesh {
 
 namespace {
 
-bool degenerate(const std::array<Vec3, 3>& c) {
-  const double l2 = (c[1] - c[0]).squaredNorm() + (c[2] - c[1]).squaredNorm() + (c[0] - c[2]).squaredNorm();
-  return !((c[1] - c[0]).cross(c[2] - c[0]).norm() > 1e-12 * l2);
-}
-
-// Projection that drops the dominant axis of triangle c's normal (c is not
-// degenerate there, so only its own points project onto its corners).
-struct Flat {
-  int axis;
-  explicit Flat(const std::array<Vec3, 3>& c) { (c[1] - c[0]).cross(c[2] - c[0]).cwiseAbs().maxCoeff(&axis); }
-  Vec2 operator()(const Vec3& x) const { return Vec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); }
-};
-
 // Triangles sharing only corner v: a line through v along one of their edges
 // at v with one triangle strictly on each side (in s's projection) shows they
 // meet only at v: a point of both would project into both. Sides are exact.
 bool fan_neighbours_apart(const std::array<Vec3, 3>& cs, int is, const std::array<Vec3, 3>& ct, int it) {
-  const Flat flat(cs);
+  const DominantProjection flat(cs[0], cs[1], cs[2]);
   const Vec2 v = flat(cs[is]);
   const Vec2 s1 = flat(cs[(is + 1) % 3]), s2 = flat(cs[(is + 2) % 3]);
   const Vec2 t1 = flat(ct[(it + 1) % 3]), t2 = flat(ct[(it + 2) % 3]);
@@ -71,7 +58,7 @@ bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, cons
   // They overlap only when coplanar with the apexes on the same side of the
   // edge (sides in s's projection, exact where coplanar); the side test is
   // cheap and usually settles it before the coplanarity test.
-  const Flat flat(cs);
+  const DominantProjection flat(cs[0], cs[1], cs[2]);
   const int sa = orient2d_sign(flat(u), flat(w), flat(a)), sb = orient2d_sign(flat(u), flat(w), flat(b));
   if (sa == 0 || sa != sb) return false;
   return orient3d_sign(u, w, a, b) == 0;
@@ -84,15 +71,18 @@ SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
   const int nt = static_cast<int>(m.tris.size());
   if (nt < 2) return out;
   const TriangleBVH bvh(m.xyz, m.tris);
+  // Zero-area triangles are counted apart (quality report), not here.
+  std::vector<char> flat(nt);
+  tbb::parallel_for(0, nt, [&](int t) { flat[t] = zero_area(m.xyz[m.tris[t][0]], m.xyz[m.tris[t][1]], m.xyz[m.tris[t][2]]); });
   tbb::combinable<long long> count;
   std::mutex mutex;
   tbb::parallel_for(tbb::blocked_range<int>(0, nt, 1024), [&](const tbb::blocked_range<int>& r) {
     long long& mine = count.local();
     for (int s = r.begin(); s != r.end(); ++s) {
       const auto& cs = bvh.corners(s);
-      if (degenerate(cs)) continue;  // zero-area triangles are counted apart
+      if (flat[s]) continue;
       bvh.overlapping(bvh.box(s), [&](int t) {
-        if (t <= s || degenerate(bvh.corners(t))) return;
+        if (t <= s || flat[t]) return;
         if (!pair_meets(m.tris[s], m.tris[t], cs, bvh.corners(t))) return;
         ++mine;
         std::lock_guard<std::mutex> lock(mutex);
