@@ -36,6 +36,8 @@ namespace {
 Vec3 to_vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vec3 to_vec(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
 
+}  // namespace
+
 // Curves bounding exactly one face side (seams and degenerate curves excluded).
 int count_free_curves(const TopoDS_Shape& shape) {
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
@@ -49,6 +51,8 @@ int count_free_curves(const TopoDS_Shape& shape) {
   }
   return free;
 }
+
+namespace {
 
 double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
   Bnd_Box box;
@@ -201,9 +205,9 @@ TopoDS_Shape remove_zero_area_faces(const TopoDS_Shape& shape, double diagonal, 
 
 }  // namespace
 
-Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOptions& options,
-                       const std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
-  auto impl = std::make_shared<Model::Impl>();
+CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOptions& options,
+                  const std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
+  auto cad = std::make_shared<CadFile::Impl>();
   TopoDS_Shape shape = shape_in;
   const double diag = bbox_diagonal(shape, info.bbox_min, info.bbox_max);
   info.free_curves_before_sewing = count_free_curves(shape);
@@ -212,11 +216,11 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
     TopExp::MapShapes(shape, TopAbs_FACE, fm);
     info.faces_before_sewing = fm.Extent();
   }
+  cad->tolerance = options.sewing_tolerance_rel * diag;
+  if (!(cad->tolerance > 0) || !std::isfinite(cad->tolerance)) throw Error("sewing tolerance must be positive");
   std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
   if (options.sew && info.free_curves_before_sewing > 0) {
-    const double tol = options.sewing_tolerance_rel * diag;
-    if (!(tol > 0) || !std::isfinite(tol)) throw Error("sewing tolerance must be positive");
-    sewing = std::make_unique<BRepBuilderAPI_Sewing>(tol);
+    sewing = std::make_unique<BRepBuilderAPI_Sewing>(cad->tolerance);
     sewing->Add(shape);
     sewing->Perform();
     if (!sewing->SewedShape().IsNull()) {
@@ -224,10 +228,39 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
       info.sewn = true;
     }
   }
-  TopTools_DataMapOfShapeReal area;
-  shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed, area);
+  shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed, cad->area);
   info.free_curves_after_sewing = count_free_curves(shape);
   bbox_diagonal(shape, info.bbox_min, info.bbox_max);
+  for (const auto& [s, name] : names)
+    cad->names.emplace_back(sewing && sewing->IsModified(s) ? sewing->Modified(s) : s, name);
+  cad->shape = shape;
+  cad->info = info;
+  return CadFile(cad);
+}
+
+const ModelInfo& CadFile::info() const { return impl_->info; }
+
+Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
+  const CadFile::Impl& cad = cad_file.impl();
+  ModelInfo info = cad.info;
+  auto impl = std::make_shared<Model::Impl>();
+  TopTools_IndexedMapOfShape original;
+  TopExp::MapShapes(cad.shape, TopAbs_FACE, original);
+  info.sewn_faces = original.Extent();
+  if (info.sewn_faces == 0) throw Error("the model has no faces");
+  PreparedShape prepared;
+  try {
+    prepared = prepare_shape(cad.shape, original, cad.tolerance, options.unite, info.preparation);
+  } catch (const Standard_Failure& e) {
+    // The preparation only ever improves the model: without it, mesh what was read.
+    prepared = PreparedShape{};
+    for (int i = 1; i <= original.Extent(); ++i) prepared.source.Bind(original(i), i);
+    prepared.shape = cad.shape;
+    info.preparation.fallback = std::string("the preparation failed: ") + e.GetMessageString();
+  }
+  const TopoDS_Shape& shape = prepared.shape;
+  bbox_diagonal(shape, info.bbox_min, info.bbox_max);
+  info.free_curves_after_sewing = count_free_curves(shape);
 
   impl->shape = shape;
   TopExp::MapShapes(shape, TopAbs_FACE, impl->faces);
@@ -242,13 +275,16 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
   info.shells = impl->shells.Extent();
   if (info.faces == 0) throw Error("the model has no faces");
 
-  impl->face_names.assign(info.faces, "");
-  for (const auto& [s, name] : names) {
-    TopoDS_Shape target = s;
-    if (sewing && sewing->IsModified(s)) target = sewing->Modified(s);
-    const int id = impl->faces.FindIndex(target);
-    if (id > 0) impl->face_names[id - 1] = name;
+  impl->source_face.assign(info.faces, 0);
+  for (int f = 1; f <= info.faces; ++f)
+    if (prepared.source.IsBound(impl->faces(f))) impl->source_face[f - 1] = prepared.source(impl->faces(f));
+  std::vector<std::string> original_names(info.sewn_faces + 1);
+  for (const auto& [s, name] : cad.names) {
+    const int id = original.FindIndex(s);
+    if (id > 0) original_names[id] = name;
   }
+  impl->face_names.assign(info.faces, "");
+  for (int f = 0; f < info.faces; ++f) impl->face_names[f] = original_names[impl->source_face[f]];
 
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
   TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
@@ -258,17 +294,24 @@ Model model_from_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadO
       impl->curve_data[c - 1] =
           make_curve_data(TopoDS::Edge(impl->edges(c)), shape, impl->vertices, impl->faces, edge_faces);
     });
+    std::vector<double> area(info.faces, -1.0);
+    tbb::parallel_for(0, info.faces, [&](int f) {
+      const TopoDS_Shape& face = impl->faces(f + 1);
+      area[f] = cad.area.IsBound(face) ? cad.area(face) : face_area_exact(face);
+    });
     impl->face_data.reserve(info.faces);
-    for (int f = 1; f <= info.faces; ++f) {
-      const TopoDS_Shape& face = impl->faces(f);
-      const double a = area.IsBound(face) ? area(face) : face_area_exact(face);
-      impl->face_data.push_back(make_face_data(TopoDS::Face(face), a, impl->edges, impl->curve_data));
-    }
+    for (int f = 1; f <= info.faces; ++f)
+      impl->face_data.push_back(make_face_data(TopoDS::Face(impl->faces(f)), area[f - 1], impl->edges, impl->curve_data));
   } catch (const Standard_Failure& e) {
     throw Error(std::string("broken shape: ") + e.GetMessageString());
   }
   impl->info = info;
   return Model(impl);
+}
+
+Model model_from_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,
+                       const std::vector<std::pair<TopoDS_Shape, std::string>>& names) {
+  return prepare_model(sew_shape(shape, info, options, names), options);
 }
 
 Model model_from_shape(const TopoDS_Shape& shape, const LoadOptions& options) {
@@ -284,6 +327,7 @@ Model::~Model() = default;
 
 const ModelInfo& Model::info() const { return impl_->info; }
 std::string Model::face_name(int face) const { return impl_->face_names.at(face - 1); }
+int Model::source_face(int face) const { return impl_->source_face.at(face - 1); }
 
 std::vector<std::vector<int>> Model::solid_faces() const {
   std::vector<std::vector<int>> out;

@@ -7,12 +7,14 @@
 #include <vector>
 
 #include "geometry/geometry.h"
+#include "geometry/prepare.h"
 
 namespace sizemesh {
 
 struct LoadOptions {
   bool sew = true;                  // sew faces that touch so they share curves
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
+  bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
 };
 
 struct ModelInfo {
@@ -28,6 +30,8 @@ struct ModelInfo {
   bool sewn = false;       // sewing was run
   int entities_failed = 0;     // file entities the reader could not read or translate
   std::string first_failure;   // the first of them: "entity #26 (AXIS2_PLACEMENT_3D): <reason>"
+  int sewn_faces = 0;          // faces after sewing: the ids the config file and --no-union use
+  Preparation preparation;     // components, repair and union
   double diagonal() const { return (bbox_max - bbox_min).norm(); }
 };
 
@@ -42,6 +46,9 @@ class Model : public Geometry {
   const Impl& impl() const { return *impl_; }
   // Name from the file (STEP entity name) or empty.
   std::string face_name(int face) const;
+  // The sewn model's face (1..info().sewn_faces) this face came from; the
+  // face itself when no union ran; 0 when unknown.
+  int source_face(int face) const;
   // Faces (ids) of each solid; empty when the model has no solids.
   std::vector<std::vector<int>> solid_faces() const;
   // True when every non-degenerate curve bounds exactly two face sides.
@@ -75,8 +82,28 @@ class Model : public Geometry {
   std::shared_ptr<Impl> impl_;
 };
 
+// A file's shape, sewn, before preparation (OpenCASCADE data behind Impl).
+class CadFile {
+ public:
+  struct Impl;  // geometry/occt_model.h
+  explicit CadFile(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
+  const ModelInfo& info() const;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
 // Reads STEP (.stp/.step), IGES (.igs/.iges) or OpenCASCADE BREP (.brep),
-// chosen by content first and extension second. Throws Error with one sentence.
+// chosen by content first and extension second, and sews it. Throws Error
+// with one sentence.
+CadFile read_cad(const std::string& path, const LoadOptions& options = {});
+
+// Geometry preparation (geometry/prepare.h), then stable ids and cached
+// per-entity data.
+Model prepare_model(const CadFile& cad, const LoadOptions& options = {});
+
+// read_cad then prepare_model.
 Model load_model(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace sizemesh

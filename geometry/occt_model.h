@@ -4,6 +4,8 @@
 #include <Geom2d_Curve.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
+#include <TopTools_DataMapOfShapeInteger.hxx>
+#include <TopTools_DataMapOfShapeReal.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Shape.hxx>
 
@@ -42,11 +44,38 @@ struct Model::Impl {
   std::vector<std::string> face_names;
   std::vector<OcctFace> face_data;    // index id - 1
   std::vector<OcctCurve> curve_data;  // index id - 1
+  std::vector<int> source_face;       // index id - 1: the sewn model's face it came from
 };
 
-// Sews (when asked and needed), numbers the entities and caches per-entity data.
-// `info` carries what the reader knew (path, format, unit); `names` maps
-// shapes as read to their names in the file.
+// A file's shape after sewing, before preparation: what read_cad returns.
+struct CadFile::Impl {
+  TopoDS_Shape shape;
+  ModelInfo info;
+  double tolerance = 0;  // sewing tolerance, model units
+  TopTools_DataMapOfShapeReal area;  // exact face areas known from sewing
+  std::vector<std::pair<TopoDS_Shape, std::string>> names;  // sewn faces and their names in the file
+};
+
+// Sews (when asked and needed) and drops faces of zero area. `info` carries
+// what the reader knew (path, format, unit); `names` maps shapes as read to
+// their names in the file.
+CadFile sew_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,
+                  const std::vector<std::pair<TopoDS_Shape, std::string>>& names = {});
+
+// Curves bounding exactly one face side (seams and degenerate curves excluded).
+int count_free_curves(const TopoDS_Shape& shape);
+
+// The prepared shape and, for each of its faces, the id of the sewn face it
+// came from (ids: `original`'s indices).
+struct PreparedShape {
+  TopoDS_Shape shape;
+  TopTools_DataMapOfShapeInteger source;
+};
+// geometry/prepare.cpp: components, repair and (when `unite`) union.
+PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original, double tolerance,
+                            bool unite, Preparation& info);
+
+// sew_shape then prepare_model.
 Model model_from_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,
                        const std::vector<std::pair<TopoDS_Shape, std::string>>& names = {});
 

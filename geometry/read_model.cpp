@@ -264,7 +264,7 @@ TopoDS_Shape read_brep(const std::string& path, ModelInfo& info) {
 
 }  // namespace
 
-Model load_model(const std::string& path, const LoadOptions& options) {
+CadFile read_cad(const std::string& path, const LoadOptions& options) {
   prepare_occt();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("no such file: '" + path + "'");
@@ -301,11 +301,15 @@ Model load_model(const std::string& path, const LoadOptions& options) {
     }
     if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
       throw Error("'" + path + "' contains no surfaces to mesh" + failure_note(info));
-    return model_from_shape(shape, info, options, names);
+    return sew_shape(shape, info, options, names);
   } catch (const Standard_Failure& e) {
     const char* why = e.GetMessageString();
     throw Error("cannot read '" + path + "': " + (why && *why ? why : e.DynamicType()->Name()));
   }
+}
+
+Model load_model(const std::string& path, const LoadOptions& options) {
+  return prepare_model(read_cad(path, options), options);
 }
 
 }  // namespace sizemesh

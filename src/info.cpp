@@ -21,6 +21,25 @@ void print_info(const Model& model, std::ostream& out) {
       << "points:      " << i.points << "\n"
       << "free curves: " << i.free_curves_before_sewing << " before sewing, " << i.free_curves_after_sewing
       << " after" << (i.sewn ? "" : " (not sewn)") << "\n";
+  const Preparation& prep = i.preparation;
+  out << "components:  " << prep.components.size() << " after sewing\n";
+  int k = 0;
+  for (const Component& c : prep.components) {
+    out << std::setprecision(4) << "  " << ++k << ": " << c.faces << " faces, "
+        << (c.closed ? "closed" : std::to_string(c.free_curves) + " free curves") << ", area " << c.area << ", box ["
+        << c.bbox_min.x() << ", " << c.bbox_min.y() << ", " << c.bbox_min.z() << "] - [" << c.bbox_max.x() << ", "
+        << c.bbox_max.y() << ", " << c.bbox_max.z() << "] -> " << c.role;
+    if (c.faces_removed) out << " (" << c.faces_removed << " faces taken out)";
+    out << "\n";
+  }
+  if (prep.union_requested) {
+    out << "union:       ";
+    if (prep.fused) out << prep.solids_fused << " solids fused";
+    else if (!prep.fallback.empty()) out << "not kept: " << prep.fallback;
+    else out << "not needed";
+    out << "; " << prep.duplicate_faces_removed << " duplicate and " << prep.internal_faces_removed
+        << " internal faces removed; " << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
+  }
   if (i.entities_failed)
     out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";
   int named = 0;

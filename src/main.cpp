@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   app.add_option("--background", o.background, "write the background mesh with its size fields (.vtu)");
   app.add_flag("--info", info_only, "print what was loaded (unit, bounding box, entity counts, free curves) and exit");
   app.add_flag("!--no-sew", o.load.sew, "do not sew faces that touch");
+  app.add_flag("!--no-union", o.load.unite,
+               "mesh each component where it lies: no repair of open components, no union of the closed ones");
   app.add_option("--sew-tolerance", o.load.sewing_tolerance_rel, "sewing tolerance relative to the bounding-box diagonal")
       ->capture_default_str()->check(positive);
   app.add_option("--deflection", o.tessellation.deflection_rel,

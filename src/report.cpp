@@ -18,6 +18,27 @@ nlohmann::json report_json(const RunReport& r) {
                 {"faces", info.faces},     {"curves", info.curves},   {"points", info.points},
                 {"solids", info.solids},   {"free_curves_after_sewing", info.free_curves_after_sewing},
                 {"entities_failed", info.entities_failed}, {"first_failed_entity", info.first_failure}};
+  const Preparation& prep = info.preparation;
+  json components = json::array();
+  for (const Component& c : prep.components)
+    components.push_back({{"faces", c.faces},
+                          {"closed", c.closed},
+                          {"free_curves", c.free_curves},
+                          {"area", c.area},
+                          {"bbox_min", {c.bbox_min.x(), c.bbox_min.y(), c.bbox_min.z()}},
+                          {"bbox_max", {c.bbox_max.x(), c.bbox_max.y(), c.bbox_max.z()}},
+                          {"role", c.role},
+                          {"faces_removed", c.faces_removed}});
+  j["preparation"] = {{"components", components},
+                      {"union_requested", prep.union_requested},
+                      {"fused", prep.fused},
+                      {"solids_fused", prep.solids_fused},
+                      {"fallback", prep.fallback},
+                      {"duplicate_faces_removed", prep.duplicate_faces_removed},
+                      {"internal_faces_removed", prep.internal_faces_removed},
+                      {"components_repaired", prep.components_repaired},
+                      {"faces_before", prep.faces_before},
+                      {"faces_after", prep.faces_after}};
   j["background"] = {{"triangles", r.background_triangles},
                      {"vertices", r.background_vertices},
                      {"tessellation_vertices", r.refinement.vertices_before},

@@ -89,7 +89,18 @@ TEST_CASE("info reports unit, bounding box, counts and free curves") {
   const auto r = test::run_sizemesh("--info " + test::model_path("f16_openvsp.stp"));
   REQUIRE(r.status == 0);
   CHECK(r.out.find("unit:        ft") != std::string::npos);
-  CHECK(r.out.find("free curves: 212 before sewing, 24 after") != std::string::npos);
+  CHECK(r.out.find("free curves: 212 before sewing, 0 after") != std::string::npos);
+  // Seven components after sewing; the three open ones close once their
+  // internal planes and the caps between their halves are taken out.
+  CHECK(r.out.find("components:  7 after sewing") != std::string::npos);
+  CHECK(r.out.find("10 free curves, area 343.2") != std::string::npos);
+  CHECK(r.out.find("-> solid (6 faces taken out)") != std::string::npos);
+  CHECK(r.out.find("union:       7 solids fused; 4 duplicate and 5 internal faces removed; 69 faces before, 58 after") !=
+        std::string::npos);
+  const auto raw = test::run_sizemesh("--info --no-union " + test::model_path("f16_openvsp.stp"));
+  REQUIRE(raw.status == 0);
+  CHECK(raw.out.find("free curves: 212 before sewing, 24 after") != std::string::npos);
+  CHECK(raw.out.find("faces:       69 (105 before sewing)") != std::string::npos);
   CHECK(r.out.find("bounding box") != std::string::npos);
   for (const char* key : {"solids:", "shells:", "faces:", "curves:", "points:"}) CHECK(r.out.find(key) != std::string::npos);
 }

@@ -1,0 +1,421 @@
+// Geometry preparation: components of the sewn shape, their repair, and the
+// union of the closed ones into one wetted surface.
+//
+// Repair works per open component and judges every change by re-sewing it:
+//  - coincident face pairs (two halves of a body that both carry the cap
+//    between them) are taken out when that leaves no more free curves;
+//  - faces with a free curve are taken out one at a time, best first, while
+//    each removal lowers the free-curve count; the result is kept only when
+//    the component closes, and each face taken out must lie inside the closed
+//    volume (an internal sheet such as a wing's planform plane), otherwise it
+//    stays as a sheet of its own. A component that does not close is kept as
+//    it was read: nothing is lost.
+// The union is the general fuse of every closed component (all pairs
+// intersected, BOPAlgo_CellsBuilder), keeping all cells as one material and
+// removing the boundaries between them; it is kept only when the result is a
+// valid shape with no free curve. Every result face records its source face.
+#include "geometry/prepare.h"
+
+#include <BOPAlgo_CellsBuilder.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+using FaceList = std::vector<TopoDS_Face>;
+
+// Bounds on the repair's trials: sewing one component per trial.
+constexpr int kMaxCandidates = 16;
+constexpr int kMaxRounds = 8;
+
+FaceList faces_of(const TopoDS_Shape& s) {
+  FaceList out;
+  TopTools_IndexedMapOfShape fm;
+  TopExp::MapShapes(s, TopAbs_FACE, fm);
+  for (int i = 1; i <= fm.Extent(); ++i) out.push_back(TopoDS::Face(fm(i)));
+  return out;
+}
+
+TopoDS_Compound compound_of(const FaceList& faces) {
+  TopoDS_Compound c;
+  BRep_Builder b;
+  b.MakeCompound(c);
+  for (const auto& f : faces) b.Add(c, f);
+  return c;
+}
+
+struct Sewn {
+  TopoDS_Shape shape;
+  int free_curves = 0;
+  std::shared_ptr<BRepBuilderAPI_Sewing> sewing;
+  TopoDS_Face after(const TopoDS_Face& f) const {
+    return sewing->IsModified(f) ? TopoDS::Face(sewing->Modified(f)) : f;
+  }
+};
+
+Sewn sew(const FaceList& faces, double tol) {
+  Sewn s;
+  s.sewing = std::make_shared<BRepBuilderAPI_Sewing>(tol);
+  for (const auto& f : faces) s.sewing->Add(f);
+  s.sewing->Perform();
+  s.shape = s.sewing->SewedShape();
+  if (s.shape.IsNull()) s.shape = compound_of(faces);
+  s.free_curves = count_free_curves(s.shape);
+  return s;
+}
+
+Component describe(const TopoDS_Shape& s) {
+  Component c;
+  c.faces = static_cast<int>(faces_of(s).size());
+  c.free_curves = count_free_curves(s);
+  c.closed = c.free_curves == 0 && (s.ShapeType() == TopAbs_SOLID || s.ShapeType() == TopAbs_SHELL);
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(s, g);
+  c.area = std::abs(g.Mass());
+  Bnd_Box box;
+  BRepBndLib::Add(s, box, false);
+  if (!box.IsVoid()) {
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    c.bbox_min = {x0, y0, z0};
+    c.bbox_max = {x1, y1, z1};
+  }
+  return c;
+}
+
+// The connected pieces of the sewn shape: solids, shells outside solids, and
+// faces outside shells.
+std::vector<TopoDS_Shape> components_of(const TopoDS_Shape& shape) {
+  std::vector<TopoDS_Shape> out;
+  for (TopExp_Explorer ex(shape, TopAbs_SOLID); ex.More(); ex.Next()) out.push_back(ex.Current());
+  for (TopExp_Explorer ex(shape, TopAbs_SHELL, TopAbs_SOLID); ex.More(); ex.Next()) out.push_back(ex.Current());
+  for (TopExp_Explorer ex(shape, TopAbs_FACE, TopAbs_SHELL); ex.More(); ex.Next()) out.push_back(ex.Current());
+  return out;
+}
+
+// Faces of `faces` whose sewn image has a free curve.
+FaceList faces_on_free_curves(const FaceList& faces, const Sewn& s) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(s.shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  FaceList out;
+  for (const auto& f : faces) {
+    const TopoDS_Face g = s.after(f);
+    for (TopExp_Explorer ex(g, TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      const int k = edge_faces.FindIndex(e);
+      if (k == 0 || BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, g)) continue;
+      if (edge_faces(k).Extent() == 1) {
+        out.push_back(f);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// Pairs of faces lying on each other: same area, centre and box within `tol`.
+std::vector<std::pair<int, int>> coincident_pairs(const FaceList& faces, double tol) {
+  struct Props {
+    double area;
+    gp_Pnt centre;
+    double box[6];
+  };
+  std::vector<Props> p(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    GProp_GProps g;
+    BRepGProp::SurfaceProperties(faces[i], g);
+    p[i].area = std::abs(g.Mass());
+    p[i].centre = g.CentreOfMass();
+    Bnd_Box b;
+    BRepBndLib::Add(faces[i], b, false);
+    if (b.IsVoid()) p[i].area = 0;
+    else b.Get(p[i].box[0], p[i].box[1], p[i].box[2], p[i].box[3], p[i].box[4], p[i].box[5]);
+  }
+  std::vector<std::pair<int, int>> out;
+  std::vector<bool> used(faces.size(), false);
+  for (size_t i = 0; i < faces.size(); ++i) {
+    for (size_t j = i + 1; j < faces.size() && !used[i]; ++j) {
+      if (used[j] || !(p[i].area > 0)) continue;
+      const double a = std::max(p[i].area, p[j].area);
+      if (std::abs(p[i].area - p[j].area) > 1e-6 * a + tol * std::sqrt(a)) continue;
+      if (p[i].centre.Distance(p[j].centre) > tol) continue;
+      bool same_box = true;
+      for (int k = 0; k < 6 && same_box; ++k) same_box = std::abs(p[i].box[k] - p[j].box[k]) <= 2 * tol;
+      if (!same_box) continue;
+      out.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      used[i] = used[j] = true;
+    }
+  }
+  return out;
+}
+
+// A point inside the face (not on its boundary), found on a uv grid.
+bool interior_point(const TopoDS_Face& f, gp_Pnt& p) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepTopAdaptor_FClass2d inside(f, Precision::PConfusion());
+  BRepAdaptor_Surface s(f, false);
+  constexpr int n = 9;
+  for (int k = 0; k < n * n; ++k) {
+    // Centre first, then outwards.
+    const int i = (n / 2 + (k % n + 1) / 2 * ((k % n) % 2 ? 1 : -1)) % n;
+    const int j = (n / 2 + (k / n + 1) / 2 * ((k / n) % 2 ? 1 : -1)) % n;
+    const double u = u0 + (u1 - u0) * (i + 0.5) / n, v = v0 + (v1 - v0) * (j + 0.5) / n;
+    if (inside.Perform(gp_Pnt2d(u, v)) == TopAbs_IN) {
+      p = s.Value(u, v);
+      return true;
+    }
+  }
+  return false;
+}
+
+// True when the face lies inside the solid or on its boundary.
+bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
+  gp_Pnt p;
+  if (!interior_point(f, p)) return false;
+  BRepClass3d_SolidClassifier cls(solid, p, tol);
+  return cls.State() == TopAbs_IN || cls.State() == TopAbs_ON;
+}
+
+TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
+  TopExp_Explorer ex(sewn, TopAbs_SHELL);
+  if (!ex.More()) return {};
+  BRepBuilderAPI_MakeSolid make(TopoDS::Shell(ex.Current()));
+  if (!make.IsDone()) return {};
+  TopoDS_Solid solid = make.Solid();
+  BRepLib::OrientClosedSolid(solid);
+  return solid;
+}
+
+// The repair of one open component. `faces` empty on return means "keep the
+// component as it was".
+struct Repair {
+  TopoDS_Shape closed;    // the closed, sewn component (a shell), or null
+  Sewn sewn;              // the sewing that made it
+  FaceList kept;          // faces of `closed`, before that sewing
+  FaceList sheets;        // faces taken out that lie outside the component's volume
+  int duplicates = 0, internal = 0;
+};
+
+Repair repair_component(const FaceList& faces, double tol, double component_diagonal) {
+  Repair r;
+  // A looser sewing may close it alone (a sewing ladder up to 1e-3 of the
+  // component's size), judged by the free curves left.
+  for (double t : {tol, 10 * tol, 100 * tol}) {
+    if (t > 1e-3 * component_diagonal && t > tol) break;
+    Sewn s = sew(faces, t);
+    if (s.free_curves == 0 && TopExp_Explorer(s.shape, TopAbs_SHELL).More()) {
+      r.closed = s.shape;
+      r.sewn = s;
+      r.kept = faces;
+      return r;
+    }
+  }
+  FaceList current = faces;
+  Sewn now = sew(current, tol);
+  // Coincident pairs: both out (the cap between two halves of one body) when
+  // that does not open the component further, else one of them (a duplicate).
+  for (const auto& [i, j] : coincident_pairs(faces, tol)) {
+    auto without = [&](std::initializer_list<int> drop) {
+      FaceList out;
+      for (const auto& f : current) {
+        bool keep = true;
+        for (int d : drop) keep = keep && !f.IsSame(faces[d]);
+        if (keep) out.push_back(f);
+      }
+      return out;
+    };
+    for (auto drop : {std::initializer_list<int>{i, j}, std::initializer_list<int>{j}}) {
+      FaceList trial = without(drop);
+      Sewn s = sew(trial, tol);
+      if (s.free_curves <= now.free_curves) {
+        r.duplicates += static_cast<int>(drop.size());
+        current = trial;
+        now = s;
+        break;
+      }
+    }
+  }
+  // Faces on free curves, best first, while each removal closes more.
+  FaceList removed;
+  for (int round = 0; round < kMaxRounds && now.free_curves > 0; ++round) {
+    FaceList cand = faces_on_free_curves(current, now);
+    if (cand.size() > static_cast<size_t>(kMaxCandidates)) cand.resize(kMaxCandidates);
+    int best = -1;
+    Sewn best_sewn;
+    for (size_t c = 0; c < cand.size(); ++c) {
+      FaceList trial;
+      for (const auto& f : current)
+        if (!f.IsSame(cand[c])) trial.push_back(f);
+      Sewn s = sew(trial, tol);
+      if (s.free_curves < (best < 0 ? now.free_curves : best_sewn.free_curves)) {
+        best = static_cast<int>(c);
+        best_sewn = s;
+      }
+    }
+    if (best < 0) break;
+    removed.push_back(cand[best]);
+    current.erase(std::find_if(current.begin(), current.end(), [&](const TopoDS_Face& f) { return f.IsSame(cand[best]); }));
+    now = best_sewn;
+  }
+  if (now.free_curves != 0) return {};
+  const TopoDS_Solid solid = solid_of(now.shape);
+  if (solid.IsNull()) return {};
+  for (const auto& f : removed) {
+    if (inside_solid(f, solid, tol)) ++r.internal;
+    else r.sheets.push_back(f);
+  }
+  r.closed = now.shape;
+  r.sewn = now;
+  r.kept = current;
+  return r;
+}
+
+double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm(); }
+
+}  // namespace
+
+PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original, double tol,
+                            bool unite, Preparation& info) {
+  PreparedShape out;
+  info = Preparation{};
+  info.union_requested = unite;
+  info.faces_before = original.Extent();
+  for (int i = 1; i <= original.Extent(); ++i) out.source.Bind(original(i), i);
+  const std::vector<TopoDS_Shape> parts = components_of(sewn);
+  for (const auto& s : parts) info.components.push_back(describe(s));
+  if (!unite) {
+    for (auto& c : info.components) c.role = c.closed ? "solid" : "sheet";
+    out.shape = sewn;
+    info.faces_after = info.faces_before;
+    return out;
+  }
+
+  // Repair each open component; collect the solids and sheets.
+  std::vector<TopoDS_Shape> solids, sheets;
+  FaceList loose;
+  auto follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
+    if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
+  };
+  for (size_t k = 0; k < parts.size(); ++k) {
+    Component& c = info.components[k];
+    const TopoDS_Shape& s = parts[k];
+    if (s.ShapeType() == TopAbs_SOLID) {
+      c.role = "solid";
+      solids.push_back(s);
+      continue;
+    }
+    Repair r;
+    if (c.closed) {
+      r.closed = s;
+    } else if (s.ShapeType() == TopAbs_SHELL) {
+      r = repair_component(faces_of(s), tol, diagonal_of(c));
+      for (const auto& f : r.kept) follow(f, r.sewn.after(f));
+    }
+    const TopoDS_Solid solid = r.closed.IsNull() ? TopoDS_Solid() : solid_of(r.closed);
+    if (solid.IsNull()) {
+      c.role = "sheet";
+      sheets.push_back(s);
+      continue;
+    }
+    c.role = "solid";
+    c.faces_removed = r.duplicates + r.internal + static_cast<int>(r.sheets.size());
+    info.duplicate_faces_removed += r.duplicates;
+    info.internal_faces_removed += r.internal;
+    if (!c.closed) ++info.components_repaired;
+    solids.push_back(solid);
+    for (const auto& f : r.sheets) loose.push_back(f);
+  }
+  // Faces taken out of one component may lie inside another one (the plane
+  // of the left tail inside the right tail): those are internal too.
+  for (const auto& f : loose) {
+    bool inside = false;
+    for (const auto& s : solids) inside = inside || inside_solid(f, s, tol);
+    if (inside) ++info.internal_faces_removed;
+    else sheets.push_back(f);
+  }
+
+  BRep_Builder b;
+  TopoDS_Compound result;
+  b.MakeCompound(result);
+  for (const auto& s : sheets) b.Add(result, s);
+  if (solids.size() >= 2) {
+    TopTools_ListOfShape args;
+    for (const auto& s : solids) args.Append(s);
+    TopoDS_Shape fused;
+    for (double fuzzy : {0.0, tol}) {
+      try {
+        BOPAlgo_CellsBuilder cells;
+        cells.SetArguments(args);
+        cells.SetRunParallel(true);
+        if (fuzzy > 0) cells.SetFuzzyValue(fuzzy);
+        cells.Perform();
+        if (cells.HasErrors()) {
+          info.fallback = "the general fuse failed";
+          continue;
+        }
+        cells.AddAllToResult(1, false);
+        cells.RemoveInternalBoundaries();
+        const TopoDS_Shape& shape = cells.Shape();
+        if (shape.IsNull() || !BRepCheck_Analyzer(shape).IsValid()) {
+          info.fallback = "the union is not a valid shape";
+          continue;
+        }
+        if (count_free_curves(shape) != 0) {
+          info.fallback = "the union is not closed";
+          continue;
+        }
+        for (const auto& s : solids)
+          for (const auto& f : faces_of(s)) {
+            if (cells.IsDeleted(f)) continue;
+            const TopTools_ListOfShape& pieces = cells.Modified(f);
+            for (const auto& piece : pieces) follow(f, TopoDS::Face(piece));
+          }
+        fused = shape;
+        info.fallback.clear();
+        break;
+      } catch (const Standard_Failure& e) {
+        info.fallback = std::string("the general fuse failed: ") + e.GetMessageString();
+      }
+    }
+    if (!fused.IsNull()) {
+      info.fused = true;
+      info.solids_fused = static_cast<int>(solids.size());
+      b.Add(result, fused);
+      solids.clear();
+    }
+  }
+  for (const auto& s : solids) b.Add(result, s);
+  out.shape = result;
+  info.faces_after = static_cast<int>(faces_of(result).size());
+  return out;
+}
+
+}  // namespace sizemesh

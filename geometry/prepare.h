@@ -1,0 +1,38 @@
+// Geometry preparation between loading and the background mesh: the sewn
+// model's components, their repair, and their union into one wetted surface.
+// Kernel-free description of what was done; the work is in geometry/prepare.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/types.h"
+
+namespace sizemesh {
+
+// One connected piece of the sewn model (a shell, or a face on its own).
+struct Component {
+  int faces = 0;
+  bool closed = false;    // no free curves: it bounds a volume
+  int free_curves = 0;
+  double area = 0;
+  Vec3 bbox_min, bbox_max;
+  // After repair: "solid" (closed, takes part in the union), "sheet" (open,
+  // meshed where it lies).
+  std::string role;
+  int faces_removed = 0;  // duplicate or internal faces taken out by the repair
+};
+
+struct Preparation {
+  bool union_requested = false;
+  std::vector<Component> components;  // as sewn, before repair
+  int duplicate_faces_removed = 0;    // coincident face pairs inside one component
+  int internal_faces_removed = 0;     // sheets lying inside their own component's volume
+  int components_repaired = 0;        // open components closed by the repair
+  int solids_fused = 0;               // closed components merged by the union
+  bool fused = false;                 // the union ran and its result was kept
+  std::string fallback;               // why the union was not kept; empty when it was or was not needed
+  int faces_before = 0, faces_after = 0;
+};
+
+}  // namespace sizemesh
