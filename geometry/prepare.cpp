@@ -310,7 +310,10 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   info.faces_before = original.Extent();
   for (int i = 1; i <= original.Extent(); ++i) out.source.Bind(original(i), i);
   const std::vector<TopoDS_Shape> parts = components_of(sewn);
-  for (const auto& s : parts) info.components.push_back(describe(s));
+  for (const auto& s : parts) {
+    info.components.push_back(describe(s));
+    for (const auto& f : faces_of(s)) info.components.back().face_ids.push_back(original.FindIndex(f));
+  }
   if (!unite) {
     for (auto& c : info.components) c.role = c.closed ? "solid" : "sheet";
     out.shape = sewn;

@@ -21,6 +21,7 @@ struct Component {
   // meshed where it lies).
   std::string role;
   int faces_removed = 0;  // duplicate or internal faces taken out by the repair
+  std::vector<int> face_ids;  // its faces' ids in the sewn model (Model::source_face)
 };
 
 struct Preparation {

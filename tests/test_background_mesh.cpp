@@ -15,6 +15,7 @@
 
 #include "geometry/background_mesh.h"
 #include "geometry/occt_model.h"
+#include "tests/background_checks.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -37,11 +38,7 @@ void check_mesh(const Model& model, const BackgroundMesh& bg, bool closed) {
   }
   const double a_cad = cad_area(model), a_bg = bg.area();
   CHECK(std::abs(a_bg - a_cad) <= 0.01 * a_cad);
-  if (closed) {
-    int bad = 0;
-    for (int v : bg.edge_valence()) bad += v != 2;
-    CHECK(bad == 0);
-  }
+  if (closed) CHECK(test::open_background_edges(model, bg) == 0);
   // Classification: dim-0 vertices are the B-rep points, in id order.
   for (int p = 0; p < model.num_points(); ++p) {
     CHECK(bg.dim[p] == 0);
