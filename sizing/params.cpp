@@ -106,6 +106,23 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   check_size(p.face_size, "face");
 }
 
+void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_faces) {
+  std::vector<std::vector<int>> pieces(sewn_faces + 1);
+  for (size_t f = 0; f < source.size(); ++f)
+    if (source[f] >= 1 && source[f] <= sewn_faces) pieces[source[f]].push_back(static_cast<int>(f) + 1);
+  auto remap = [&](auto& by_face) {
+    check_ids(by_face, sewn_faces, "face");
+    std::remove_reference_t<decltype(by_face)> out;
+    for (const auto& [id, v] : by_face)
+      for (int f : pieces[id]) out[f] = v;
+    by_face = std::move(out);
+  };
+  remap(p.face_phi_c_deg);
+  remap(p.face_mu_d);
+  remap(p.face_beta);
+  remap(p.face_size);
+}
+
 void read_config(const std::string& path, SizingParams& p) {
   std::ifstream in(path);
   if (!in) throw Error("cannot read config file '" + path + "'");

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace sizemesh {
 
@@ -38,6 +39,11 @@ struct SizingParams {
 // Throws Error (one sentence) on values outside their domain or ids the model
 // does not have. Counts are the model's numbers of points, curves and faces.
 void validate(const SizingParams& p, double diagonal, int points, int curves, int faces);
+
+// Config entries address the sewn model's faces (1..sewn_faces); the prepared
+// model's face f (1-based) came from face source[f - 1] and inherits its
+// entries. Throws Error on ids outside 1..sewn_faces.
+void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_faces);
 
 // Reads a JSON config into p (keys absent from the file keep p's values).
 // Throws Error on unreadable or malformed files and unknown keys.

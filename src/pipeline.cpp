@@ -61,27 +61,6 @@ void warn_preparation(const Preparation& p) {
     std::cerr << "sizemesh: warning: components meshed where they lie, not united: " << p.fallback << "\n";
 }
 
-// Config entries address the sewn model's faces; the prepared model's faces
-// inherit them from the face they came from.
-void remap_faces(SizingParams& p, const Model& m) {
-  std::vector<std::vector<int>> pieces(m.info().sewn_faces + 1);
-  for (int f = 1; f <= m.num_faces(); ++f) pieces[m.source_face(f)].push_back(f);
-  auto remap = [&](auto& by_face) {
-    std::remove_reference_t<decltype(by_face)> out;
-    for (const auto& [id, v] : by_face) {
-      if (id < 1 || id > m.info().sewn_faces)
-        throw Error("config names face " + std::to_string(id) + " but the model has " +
-                    std::to_string(m.info().sewn_faces) + " faces");
-      for (int f : pieces[id]) out[f] = v;
-    }
-    by_face = std::move(out);
-  };
-  remap(p.face_phi_c_deg);
-  remap(p.face_mu_d);
-  remap(p.face_beta);
-  remap(p.face_size);
-}
-
 }  // namespace
 
 int run(const RunOptions& o) {
@@ -103,7 +82,11 @@ int run(const RunOptions& o) {
   Model model = prepare_model(cad, o.load);                                    // geometry/prepare
   clock.lap("prepare");
   warn_preparation(model.info().preparation);
-  remap_faces(params, model);
+  {
+    std::vector<int> source(model.num_faces());
+    for (int f = 1; f <= model.num_faces(); ++f) source[f - 1] = model.source_face(f);
+    remap_face_ids(params, source, model.info().sewn_faces);                  // sizing/
+  }
   if (model.info().entities_failed > 0)
     std::cerr << "sizemesh: warning: " << model.info().entities_failed
               << " entities could not be read and are left out of the mesh; first: " << model.info().first_failure

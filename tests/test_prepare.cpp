@@ -19,6 +19,7 @@
 #include "geometry/occt_model.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
+#include "sizing/params.h"
 #include "sizing/size_function.h"
 #include "tests/test_models.h"
 
@@ -109,6 +110,24 @@ TEST_CASE("a box wing through a cylinder fuselage unites into one closed surface
   const SurfaceMesh m = mesh_closed(model, 0.1);
   const double volume = kPi * 10 + 2 * 12 * 0.4 - 2 * 2 * (s * c + std::asin(s));
   CHECK(signed_volume(m) == Approx(volume).epsilon(5e-3));  // outward, polygonal
+}
+
+TEST_CASE("config face ids keep addressing the faces as sewn after the union") {
+  const Model model = model_from_shape(compound({BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 1.0, 1.0, 1.0).Shape(),
+                                                 BRepPrimAPI_MakeBox(gp_Pnt(1, 0, 0), 1.0, 1.0, 1.0).Shape()}));
+  std::vector<int> source;
+  for (int f = 1; f <= model.num_faces(); ++f) source.push_back(model.source_face(f));
+  REQUIRE(model.info().sewn_faces == 12);
+  SizingParams p;
+  for (int id = 1; id <= 12; ++id) p.face_size[id] = UserSize{0.01 * id, ""};
+  p.face_beta[3] = 1.5;
+  remap_face_ids(p, source, 12);
+  REQUIRE(p.face_size.size() == 10);  // one entry per result face
+  for (int f = 1; f <= model.num_faces(); ++f) CHECK(p.face_size.at(f).value == Approx(0.01 * model.source_face(f)));
+  for (const auto& [f, beta] : p.face_beta) CHECK(model.source_face(f) == 3);
+  SizingParams bad;
+  bad.face_mu_d[13] = 2;
+  CHECK_THROWS_WITH(remap_face_ids(bad, source, 12), "config names face 13 but the model has 12 faces");
 }
 
 TEST_CASE("two touching boxes give one closed surface with no internal face") {
