@@ -46,7 +46,7 @@ def main():
     binary = os.path.join(a.build, "sizemesh")
     print(f"{'model':32s} {'exit':>4s} {'wall s':>7s} {'peak MB':>8s} {'estimate':>10s} {'triangles':>10s} "
           f"{'est/act':>7s} {'steps/tri':>9s} {'failed':>6s} {'inverted':>8s} {'<12deg':>7s} {'avoidable':>9s} "
-          f"{'crossing':>8s} {'local':>6s}")
+          f"{'crossing':>8s} {'local':>6s} {'boundary':>8s} {'prepare s':>9s}")
     with tempfile.TemporaryDirectory() as tmp:
         for f in a.files:
             code, wall, peak, j = run(binary, os.path.join(a.models, f), a.threads, tmp)
@@ -57,7 +57,8 @@ def main():
                   f"{mesher.get('front_steps_per_triangle', float('nan')):9.3f} {len(mesh.get('failed_faces', [])):6d} "
                   f"{mesh.get('inverted_triangles', -1):8d} {mesh.get('bad_below_12deg', -1):7d} "
                   f"{mesh.get('avoidable_below_12deg', -1):9d} {mesh.get('self_intersecting_pairs', -1):8d} "
-                  f"{mesh.get('local_self_intersecting_pairs', -1):6d}")
+                  f"{mesh.get('local_self_intersecting_pairs', -1):6d} {mesh.get('boundary_edges', -1):8d} "
+                  f"{j.get('seconds', {}).get('prepare', float('nan')):9.2f}")
             sys.stdout.flush()
 
 

@@ -16,6 +16,8 @@
 // valid shape with no free curve. Every result face records its source face.
 #include "geometry/prepare.h"
 
+#include <BOPAlgo_Alerts.hxx>
+#include <BOPAlgo_Builder.hxx>
 #include <BOPAlgo_CellsBuilder.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
@@ -35,6 +37,7 @@
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_MapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Shell.hxx>
@@ -42,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "geometry/occt_model.h"
@@ -300,6 +304,62 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
 
 double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm(); }
 
+using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
+
+// The general fuse of the bodies and the sheets (BOPAlgo_Builder): every curve
+// where a sheet meets a body or another sheet is shared by the faces on both
+// sides, and sheet pieces inside a body (or lying on its surface) are
+// dropped. Returns the kept faces as a compound, oriented as in the result,
+// or a null shape when the fuse fails.
+TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
+                            double tol, const Follow& follow, Preparation& info) {
+  TopTools_ListOfShape args;
+  for (const auto& s : bodies) args.Append(s);
+  for (const auto& s : sheets) args.Append(s);
+  BOPAlgo_Builder fuse;
+  fuse.SetArguments(args);
+  fuse.SetRunParallel(true);
+  try {
+    fuse.Perform();
+  } catch (const Standard_Failure&) {
+    fuse.AddError(new BOPAlgo_AlertBuilderFailed);
+  }
+  if (fuse.HasErrors() || fuse.Shape().IsNull()) {
+    info.fallback = "the sheets could not be imprinted";
+    return {};
+  }
+  std::vector<TopoDS_Shape> solids;
+  for (const auto& s : bodies)
+    for (TopExp_Explorer ex(s, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
+  auto pieces_of = [&](const TopoDS_Face& f) {
+    FaceList out;
+    for (const auto& p : fuse.Modified(f)) out.push_back(TopoDS::Face(p));
+    if (out.empty() && !fuse.IsDeleted(f)) out.push_back(f);
+    return out;
+  };
+  TopTools_MapOfShape dropped;
+  for (const auto& s : sheets)
+    for (const auto& f : faces_of(s))
+      for (const auto& piece : pieces_of(f)) {
+        bool inside = false;
+        for (const auto& solid : solids) inside = inside || inside_solid(piece, solid, tol);
+        if (inside) dropped.Add(piece);
+        else follow(f, piece);
+      }
+  for (const auto& s : bodies)
+    for (const auto& f : faces_of(s))
+      for (const auto& piece : pieces_of(f)) follow(f, piece);
+  info.sheets_imprinted = static_cast<int>(sheets.size());
+  info.sheet_pieces_dropped = dropped.Extent();
+  TopoDS_Compound out;
+  BRep_Builder b;
+  b.MakeCompound(out);
+  TopTools_MapOfShape added;
+  for (TopExp_Explorer ex(fuse.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+    if (!dropped.Contains(ex.Current()) && added.Add(ex.Current())) b.Add(out, ex.Current());
+  return out;
+}
+
 }  // namespace
 
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original, double tol,
@@ -324,7 +384,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   // Repair each open component; collect the solids and sheets.
   std::vector<TopoDS_Shape> solids, sheets;
   FaceList loose;
-  auto follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
+  const Follow follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
     if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
   };
   for (size_t k = 0; k < parts.size(); ++k) {
@@ -368,7 +428,6 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   BRep_Builder b;
   TopoDS_Compound result;
   b.MakeCompound(result);
-  for (const auto& s : sheets) b.Add(result, s);
   if (solids.size() >= 2) {
     TopTools_ListOfShape args;
     for (const auto& s : solids) args.Append(s);
@@ -411,10 +470,18 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     if (!fused.IsNull()) {
       info.fused = true;
       info.solids_fused = static_cast<int>(solids.size());
-      b.Add(result, fused);
-      solids.clear();
+      solids = {fused};
     }
   }
+  if (!sheets.empty() && solids.size() + sheets.size() >= 2) {
+    const TopoDS_Shape imprinted = imprint_sheets(solids, sheets, tol, follow, info);
+    if (!imprinted.IsNull()) {
+      out.shape = imprinted;
+      info.faces_after = static_cast<int>(faces_of(imprinted).size());
+      return out;
+    }
+  }
+  for (const auto& s : sheets) b.Add(result, s);
   for (const auto& s : solids) b.Add(result, s);
   out.shape = result;
   info.faces_after = static_cast<int>(faces_of(result).size());

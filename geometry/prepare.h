@@ -32,6 +32,8 @@ struct Preparation {
   int components_repaired = 0;        // open components closed by the repair
   int solids_fused = 0;               // closed components merged by the union
   bool fused = false;                 // the union ran and its result was kept
+  int sheets_imprinted = 0;           // open components joined to the rest by the general fuse
+  int sheet_pieces_dropped = 0;       // pieces of them inside a body
   std::string fallback;               // why the union was not kept; empty when it was or was not needed
   int faces_before = 0, faces_after = 0;
 };

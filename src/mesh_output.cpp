@@ -20,7 +20,7 @@ std::string extension(const std::string& path) {
 }
 
 // Gmsh 4.1: nodes are listed by the first face that uses them; elements by face.
-void write_msh(const std::string& path, const SurfaceMesh& m) {
+void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face) {
   std::ofstream out(path);
   if (!out) throw Error("cannot write '" + path + "'");
   std::map<int, std::vector<int>> face_tris;
@@ -38,8 +38,11 @@ void write_msh(const std::string& path, const SurfaceMesh& m) {
 
   out.precision(17);
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  out << "$PhysicalNames\n" << face_tris.size() << "\n";
-  for (const auto& [f, ts] : face_tris) out << "2 " << f << " \"face_" << f << "\"\n";
+  auto source = [&](int f) { return f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f; };
+  std::map<int, int> groups;  // source face -> entities in it
+  for (const auto& [f, ts] : face_tris) ++groups[source(f)];
+  out << "$PhysicalNames\n" << groups.size() << "\n";
+  for (const auto& [s, n] : groups) out << "2 " << s << " \"face_" << s << "\"\n";
   out << "$EndPhysicalNames\n";
   out << "$Entities\n0 0 " << face_tris.size() << " 0\n";
   for (const auto& [f, ts] : face_tris) {
@@ -47,7 +50,7 @@ void write_msh(const std::string& path, const SurfaceMesh& m) {
     for (int t : ts)
       for (int n : m.tris[t]) box.extend(m.xyz[n]);
     out << f << " " << box.min().x() << " " << box.min().y() << " " << box.min().z() << " " << box.max().x() << " "
-        << box.max().y() << " " << box.max().z() << " 1 " << f << " 0\n";
+        << box.max().y() << " " << box.max().z() << " 1 " << source(f) << " 0\n";
   }
   out << "$EndEntities\n";
   out << "$Nodes\n" << face_nodes.size() << " " << used_nodes << " 1 " << m.xyz.size() << "\n";
@@ -96,15 +99,22 @@ void check_mesh_format(const std::string& path) {
     throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh or .stl)");
 }
 
-void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<double>& min_angle,
-                const std::vector<double>& target_size) {
+void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face,
+                const std::vector<double>& min_angle, const std::vector<double>& target_size) {
   const std::string ext = extension(path);
-  if (ext == ".msh") return write_msh(path, m);
+  if (ext == ".msh") return write_msh(path, m, source_face);
   if (ext == ".stl") return write_stl(path, m);
   std::vector<double> dim(m.node_dim.begin(), m.node_dim.end()), entity(m.node_entity.begin(), m.node_entity.end());
+  std::vector<double> source_ids(m.tri_face.size());
+  for (size_t t = 0; t < m.tri_face.size(); ++t) {
+    const int f = m.tri_face[t];
+    source_ids[t] = f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f;
+  }
   write_vtu(path, m.xyz, m.tris,
             {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
-            {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())}, {"min_angle", min_angle}});
+            {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},
+             {"source_face_id", source_ids},
+             {"min_angle", min_angle}});
 }
 
 }  // namespace sizemesh

@@ -1,6 +1,8 @@
 // Writes the surface mesh, format by the output's extension:
-//   .vtu  VTK (ParaView): cell data face_id and min_angle, point data target_size
-//   .msh  Gmsh 4.1 ASCII, one surface entity and physical group per face
+//   .vtu  VTK (ParaView): cell data face_id, source_face_id and min_angle,
+//         point data target_size and classification
+//   .msh  Gmsh 4.1 ASCII, one surface entity per face, in the physical group
+//         of its source face ("face_<id>": the sewn model's face it came from)
 //   .stl  binary STL
 #pragma once
 
@@ -14,7 +16,8 @@ namespace sizemesh {
 // Throws Error for an unknown extension (checked before meshing) ...
 void check_mesh_format(const std::string& path);
 // ... or a file that cannot be written.
-void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<double>& min_angle,
-                const std::vector<double>& target_size);
+// source_face[f - 1]: the sewn model's face that face f came from (geometry/prepare.h).
+void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face,
+                const std::vector<double>& min_angle, const std::vector<double>& target_size);
 
 }  // namespace sizemesh

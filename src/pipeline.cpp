@@ -58,7 +58,8 @@ void warn_local_intersections(const MeshQuality& q) {
 // The union is what makes the surface closed: say when it could not be kept.
 void warn_preparation(const Preparation& p) {
   if (!p.fallback.empty())
-    std::cerr << "sizemesh: warning: components meshed where they lie, not united: " << p.fallback << "\n";
+    std::cerr << "sizemesh: warning: geometry preparation incomplete (" << p.fallback
+              << "): those components are meshed where they lie\n";
 }
 
 }  // namespace
@@ -82,11 +83,9 @@ int run(const RunOptions& o) {
   Model model = prepare_model(cad, o.load);                                    // geometry/prepare
   clock.lap("prepare");
   warn_preparation(model.info().preparation);
-  {
-    std::vector<int> source(model.num_faces());
-    for (int f = 1; f <= model.num_faces(); ++f) source[f - 1] = model.source_face(f);
-    remap_face_ids(params, source, model.info().sewn_faces);                  // sizing/
-  }
+  std::vector<int> source_face(model.num_faces());
+  for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
+  remap_face_ids(params, source_face, model.info().sewn_faces);              // sizing/
   if (model.info().entities_failed > 0)
     std::cerr << "sizemesh: warning: " << model.info().entities_failed
               << " entities could not be read and are left out of the mesh; first: " << model.info().first_failure
@@ -128,7 +127,7 @@ int run(const RunOptions& o) {
     report.mesh = &mesh;
     report.quality = mesh_quality(mesh, model, query);
     clock.lap("quality");
-    write_mesh(o.output, mesh, report.quality.min_angle, target_sizes(mesh, query));
+    write_mesh(o.output, mesh, source_face, report.quality.min_angle, target_sizes(mesh, query));
     clock.lap("output");
     if (o.verbose) print_mesh_summary(report, std::cout);
   }

@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <cstring>
 #include <unistd.h>
@@ -119,6 +120,36 @@ TEST_CASE("the same input gives the same mesh with 1 thread and with 2") {
   CHECK(a == b);
   fs::remove(one);
   fs::remove(two);
+}
+
+TEST_CASE("after the union the .msh groups and the .vtu fields carry the source face of every triangle") {
+  // The F-16's 69 sewn faces become 58: each result face is an entity in the
+  // physical group of the sewn face it came from.
+  const std::string model = test::model_path("f16_openvsp.stp");
+  const std::string msh = scratch("u.msh"), vtu = scratch("u.vtu");
+  for (const auto& path : {msh, vtu}) REQUIRE(test::run_sizemesh(model + " -q --h-max 2 -o " + path).status == 0);
+  std::istringstream text(test::slurp(msh));
+  std::string line;
+  int groups = -1, entities = -1;
+  while (std::getline(text, line)) {
+    if (line == "$PhysicalNames") text >> groups;
+    if (line == "$Entities") {
+      int points, curves;
+      text >> points >> curves >> entities;
+    }
+  }
+  CHECK(entities == 58);
+  CHECK(groups > 0);
+  CHECK(groups < 58);  // pieces of one sewn face share its group
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(vtu.c_str());
+  reader->Update();
+  vtkDataArray* source = reader->GetOutput()->GetCellData()->GetArray("source_face_id");
+  REQUIRE(source != nullptr);
+  double range[2];
+  source->GetRange(range);
+  CHECK(range[0] >= 1);
+  CHECK(range[1] <= 69);
 }
 
 TEST_CASE("mesh formats: Gmsh 4.1 with one physical group per face, binary STL, VTU with quality fields") {

@@ -12,6 +12,8 @@
 #include <TopoDS_Compound.hxx>
 #include <gp_Ax2.hxx>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -180,6 +182,93 @@ TEST_CASE("an internal planform plane between two open wing halves is taken out 
   CHECK(total_area(model) == Approx(2 * (X * Y + X * 2 * t + Y * 2 * t)).epsilon(1e-12));
   const SurfaceMesh m = mesh_closed(model, 0.1);
   CHECK(signed_volume(m) == Approx(X * Y * 2 * t).epsilon(1e-9));
+}
+
+TEST_CASE("a T of two plates is imprinted: the junction curve is shared by three faces, no triangle twice") {
+  // Base plate z = 0 (x 0..2, y 0..1); stem plate x = 1 standing on it (z 0..1).
+  const TopoDS_Shape base = quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0});
+  const TopoDS_Shape stem = quad({1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1});
+  const Model model = model_from_shape(compound({base, stem}));
+  const Preparation& p = model.info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.sheets_imprinted == 2);
+  CHECK(p.fallback.empty());
+  REQUIRE(model.num_faces() == 3);  // the base cut in two along x = 1, the stem
+  CHECK(total_area(model) == Approx(3.0).epsilon(1e-12));
+  std::map<int, int> uses;
+  for (int f = 1; f <= 3; ++f)
+    for (const auto& loop : model.face_loops(f))
+      for (const auto& use : loop) ++uses[use.curve];
+  int junction = 0, on_line = 0;
+  for (const auto& [c, n] : uses) {
+    if (n != 3) continue;
+    ++junction;
+    double t0, t1;
+    model.curve_range(c, t0, t1);
+    for (double t : {t0, 0.5 * (t0 + t1), t1}) {
+      const Vec3 x = model.eval_curve(c, t);
+      on_line += std::abs(x.x() - 1) < 1e-9 && std::abs(x.z()) < 1e-9;
+    }
+  }
+  CHECK(junction == 1);
+  CHECK(on_line == 3);
+
+  const UniformSize size(0.1);
+  const SurfaceMesh m = mesh_surface(model, size);
+  REQUIRE(m.failures.empty());
+  const MeshQuality q = mesh_quality(m, model, size);
+  CHECK(q.self_intersections == 0);
+  CHECK(q.inverted == 0);
+  // Mesh edges on the junction are used by three triangles; no other edge is.
+  std::map<std::pair<int, int>, int> edge_use;
+  std::set<std::array<int, 3>> seen;
+  for (const auto& t : m.tris) {
+    std::array<int, 3> key = t;
+    std::sort(key.begin(), key.end());
+    CHECK(seen.insert(key).second);  // no duplicate triangle
+    for (int k = 0; k < 3; ++k) ++edge_use[std::minmax(t[k], t[(k + 1) % 3])];
+  }
+  int triple = 0;
+  for (const auto& [e, n] : edge_use) {
+    if (n < 3) continue;
+    ++triple;
+    CHECK(n == 3);
+    for (int v : {e.first, e.second}) {
+      CHECK(std::abs(m.xyz[v].x() - 1) < 1e-9);
+      CHECK(std::abs(m.xyz[v].z()) < 1e-9);
+    }
+  }
+  CHECK(triple >= 10);  // the 1-long junction at h = 0.1
+  CHECK(q.nonmanifold_edges == triple);
+}
+
+TEST_CASE("a sheet fin standing on a cylinder fuselage is imprinted on it, its part inside dropped") {
+  // Fin: the plane y = 0, x 4..6, z 0.5..2, so it enters the fuselage (radius 1).
+  const TopoDS_Shape fuselage = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 1.0, 10.0).Shape();
+  const TopoDS_Shape fin = quad({4, 0, 0.5}, {6, 0, 0.5}, {6, 0, 2}, {4, 0, 2});
+  const Model model = model_from_shape(compound({fuselage, fin}));
+  const Preparation& p = model.info().preparation;
+  CHECK(p.sheets_imprinted == 1);
+  CHECK(p.sheet_pieces_dropped == 1);
+  CHECK(p.fallback.empty());
+  // Fuselage area, plus the fin above z = 1 (2 x 1).
+  CHECK(total_area(model) == Approx(2 * kPi * 10 + 2 * kPi + 2.0).epsilon(1e-9));
+  const UniformSize size(0.1);
+  const SurfaceMesh m = mesh_surface(model, size);
+  REQUIRE(m.failures.empty());
+  const MeshQuality q = mesh_quality(m, model, size);
+  CHECK(q.self_intersections == 0);
+  CHECK(q.inverted == 0);
+  // Free edges only on the fin's three outer sides (x = 4, x = 6, z = 2).
+  std::map<std::pair<int, int>, int> edge_use;
+  for (const auto& t : m.tris)
+    for (int k = 0; k < 3; ++k) ++edge_use[std::minmax(t[k], t[(k + 1) % 3])];
+  for (const auto& [e, n] : edge_use) {
+    if (n != 1) continue;
+    const Vec3 mid = 0.5 * (m.xyz[e.first] + m.xyz[e.second]);
+    CHECK(std::abs(mid.y()) < 1e-9);
+    CHECK(mid.z() > 1 - 1e-9);
+  }
 }
 
 TEST_CASE("a closed solid passes through the preparation unchanged") {
