@@ -72,8 +72,9 @@ struct PreparedShape {
   TopTools_DataMapOfShapeInteger source;
 };
 // geometry/prepare.cpp: components, repair and (when `unite`) union.
-PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original, double tolerance,
-                            bool unite, Preparation& info);
+// `area`: exact areas of the sewn faces.
+PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
+                            const TopTools_DataMapOfShapeReal& area, double tolerance, bool unite, Preparation& info);
 
 // sew_shape then prepare_model.
 Model model_from_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,

@@ -95,14 +95,22 @@ Sewn sew(const FaceList& faces, double tol) {
   return s;
 }
 
-Component describe(const TopoDS_Shape& s) {
+// `area`: exact face areas known from loading (others are computed).
+Component describe(const TopoDS_Shape& s, const TopTools_DataMapOfShapeReal& area) {
   Component c;
-  c.faces = static_cast<int>(faces_of(s).size());
+  const FaceList faces = faces_of(s);
+  c.faces = static_cast<int>(faces.size());
   c.free_curves = count_free_curves(s);
   c.closed = c.free_curves == 0 && (s.ShapeType() == TopAbs_SOLID || s.ShapeType() == TopAbs_SHELL);
-  GProp_GProps g;
-  BRepGProp::SurfaceProperties(s, g);
-  c.area = std::abs(g.Mass());
+  for (const auto& f : faces) {
+    if (area.IsBound(f)) {
+      c.area += area(f);
+      continue;
+    }
+    GProp_GProps g;
+    BRepGProp::SurfaceProperties(f, g);
+    c.area += std::abs(g.Mass());
+  }
   Bnd_Box box;
   BRepBndLib::Add(s, box, false);
   if (!box.IsVoid()) {
@@ -362,8 +370,8 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 
 }  // namespace
 
-PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original, double tol,
-                            bool unite, Preparation& info) {
+PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
+                            const TopTools_DataMapOfShapeReal& area, double tol, bool unite, Preparation& info) {
   PreparedShape out;
   info = Preparation{};
   info.union_requested = unite;
@@ -371,7 +379,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   for (int i = 1; i <= original.Extent(); ++i) out.source.Bind(original(i), i);
   const std::vector<TopoDS_Shape> parts = components_of(sewn);
   for (const auto& s : parts) {
-    info.components.push_back(describe(s));
+    info.components.push_back(describe(s, area));
     for (const auto& f : faces_of(s)) info.components.back().face_ids.push_back(original.FindIndex(f));
   }
   if (!unite) {
