@@ -34,6 +34,10 @@ class Geometry {
  public:
   virtual ~Geometry() = default;
 
+  // True when the faces bound volumes (no free curve) with normals pointing
+  // out of them: the fluid is on the normals' side.
+  virtual bool closed() const { return false; }
+
   virtual int num_faces() const = 0;
   virtual int num_curves() const = 0;
   virtual int num_points() const = 0;

@@ -52,7 +52,7 @@ class Model : public Geometry {
   // Faces (ids) of each solid; empty when the model has no solids.
   std::vector<std::vector<int>> solid_faces() const;
   // True when every non-degenerate curve bounds exactly two face sides.
-  bool closed() const { return info().free_curves_after_sewing == 0; }
+  bool closed() const override { return info().free_curves_after_sewing == 0; }
 
   int num_faces() const override;
   int num_curves() const override;

@@ -51,11 +51,12 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   }
   m.t_proximity = now() - t;
   t = now();
-  std::vector<double> h_gap(bg.num_vertices(), kNoLimit);
+  GapSizes h_gap{std::vector<double>(bg.num_vertices(), kNoLimit), std::vector<double>(bg.num_vertices(), kNoLimit)};
   if (p.proximity && p.local_proximity) {
     double mu_max = p.mu_d;
     for (const auto& [f, mu] : p.face_mu_d) mu_max = std::max(mu_max, mu);
-    h_gap = gap_sizes(g, bg, p, m.h_max * mu_max);
+    // Faces closer than the sewing tolerance (1e-5 of the diagonal) touch.
+    h_gap = gap_sizes(g, bg, p, m.h_max * mu_max, 1e-5 * diagonal);
   }
   m.t_gap = now() - t;
   t = now();
@@ -67,11 +68,12 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   m.h_initial.resize(nv);
   m.limit.resize(nv);
   for (int v = 0; v < nv; ++v) {
-    m.h_proximity[v] = std::min({h_face[v], h_curve[v], h_gap[v]});
+    m.h_proximity[v] = std::min({h_face[v], h_curve[v], h_gap.fluid[v], h_gap.solid[v]});
     // h_a = max(h_min, min(h_d, h_c, h_u, h_max)), remembering which term won.
     std::pair<double, Limit> best{m.h_max, Limit::HMax};
     for (auto c : {std::make_pair(m.h_curvature[v], Limit::Curvature), std::make_pair(h_face[v], Limit::FaceProximity),
-                   std::make_pair(h_curve[v], Limit::CurveLength), std::make_pair(h_gap[v], Limit::Gap),
+                   std::make_pair(h_curve[v], Limit::CurveLength), std::make_pair(h_gap.fluid[v], Limit::Gap),
+                   std::make_pair(h_gap.solid[v], Limit::Thickness),
                    std::make_pair(m.h_user[v], Limit::User)})
       if (c.first < best.first) best = c;
     if (best.first < m.h_min) best = {m.h_min, Limit::HMin};

@@ -32,6 +32,7 @@ void apply_config(const std::string& path, const std::set<std::string>& from_cli
     if (o.number) p.*o.number = given.*o.number;
     if (o.on) p.*o.on = given.*o.on;
   }
+  if (from_cli.count("gap_side")) p.gap_side = given.gap_side;
 }
 
 }  // namespace sizemesh

@@ -123,6 +123,21 @@ void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_fa
   remap(p.face_size);
 }
 
+const char* gap_side_name(GapSide s) {
+  switch (s) {
+    case GapSide::Fluid: return "fluid";
+    case GapSide::Solid: return "solid";
+    case GapSide::Both: return "both";
+    default: return "auto";
+  }
+}
+
+GapSide gap_side_from(const std::string& name) {
+  for (GapSide s : {GapSide::Auto, GapSide::Fluid, GapSide::Solid, GapSide::Both})
+    if (name == gap_side_name(s)) return s;
+  throw Error("gap side must be auto, fluid, solid or both, got '" + name + "'");
+}
+
 void read_config(const std::string& path, SizingParams& p) {
   std::ifstream in(path);
   if (!in) throw Error("cannot read config file '" + path + "'");
@@ -134,7 +149,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   std::set<std::string> known = {"curve_phi_c", "face_phi_c", "face_mu_d", "face_beta",
-                                 "point_size",  "curve_size", "face_size"};
+                                 "point_size",  "curve_size", "face_size",  "gap_side"};
   for (const SizingOption& o : sizing_options()) known.insert(o.key);
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -145,6 +160,10 @@ void read_config(const std::string& path, SizingParams& p) {
       if (!j[o.key].is_boolean()) throw Error("config: " + o.key + " must be true or false");
       p.*o.on = j[o.key].get<bool>();
     }
+  }
+  if (j.contains("gap_side")) {
+    if (!j["gap_side"].is_string()) throw Error("config: gap_side must be a string (auto, fluid, solid or both)");
+    p.gap_side = gap_side_from(j["gap_side"].get<std::string>());
   }
   if (j.contains("curve_phi_c")) read_map(j["curve_phi_c"], "curve_phi_c", p.curve_phi_c_deg, number);
   if (j.contains("face_phi_c")) read_map(j["face_phi_c"], "face_phi_c", p.face_phi_c_deg, number);

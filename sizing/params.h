@@ -15,6 +15,14 @@ struct UserSize {
   std::string expression;  // used when not empty
 };
 
+// Which gaps the proximity size resolves: across the fluid (between parts, a
+// slot between a flap and a wing), across the solid (a plate's thickness), or
+// both. Auto: fluid for a closed model (geometry/prepare.h makes aircraft
+// closed), both otherwise.
+enum class GapSide { Auto, Fluid, Solid, Both };
+const char* gap_side_name(GapSide s);
+GapSide gap_side_from(const std::string& name);  // throws Error on an unknown name
+
 struct SizingParams {
   double phi_c_deg = 5.0;   // curvature: central angle per element (degrees)
   double mu_d = 2.0;        // proximity: elements across a proximity distance
@@ -26,6 +34,7 @@ struct SizingParams {
   double deviation = 0;     // curvature: largest chord height of an element edge (model units); 0: none
   bool proximity = true;        // all proximity sizes: face width, curve length and gaps (paper 3.2.2)
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
+  GapSide gap_side = GapSide::Auto;
   bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;

@@ -128,11 +128,16 @@ std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& 
   return h;
 }
 
-std::vector<double> gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double max_gap) {
+GapSizes gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double max_gap, double touch) {
   const int nv = bg.num_vertices(), nt = bg.num_triangles();
-  std::vector<double> h(nv, kNoLimit);
+  GapSizes h{std::vector<double>(nv, kNoLimit), std::vector<double>(nv, kNoLimit)};
   if (nt == 0) return h;
-  // Oriented unit normals of the background triangles.
+  const GapSide side = p.gap_side == GapSide::Auto ? (g.closed() ? GapSide::Fluid : GapSide::Both) : p.gap_side;
+  std::vector<double> signs;
+  if (side != GapSide::Solid) signs.push_back(1.0);   // out of the solid: through the fluid
+  if (side != GapSide::Fluid) signs.push_back(-1.0);  // into the solid: its thickness
+  // Unit normals of the background triangles, oriented as their faces (out
+  // of the solid on a closed model).
   std::vector<Vec3> tri_n(nt);
   for (int t = 0; t < nt; ++t) {
     const auto& tr = bg.tris[t];
@@ -140,6 +145,15 @@ std::vector<double> gap_sizes(const Geometry& g, const BackgroundMesh& bg, const
     const double len = n.norm();
     tri_n[t] = len > 0 ? Vec3(n / len) : Vec3::Zero();
   }
+  // A closed model's outward normals tell the sides apart: the surface hit
+  // must face back at the ray's start (its outward normal against the start's,
+  // for a ray through the fluid or through the solid alike). Sheets have no
+  // outside: any surface facing the start, either way round, counts.
+  const bool oriented = g.closed();
+  auto facing = [&](int t, const Vec3& n) {
+    const double c = tri_n[t].dot(n);
+    return oriented ? c < -0.5 : std::abs(c) > 0.5;
+  };
   // Curves bounding each face, to tell a gap from the wedge at a shared curve.
   std::vector<std::vector<int>> face_curves(g.num_faces() + 1);
   for (int f = 1; f <= g.num_faces(); ++f) {
@@ -180,16 +194,17 @@ std::vector<double> gap_sizes(const Geometry& g, const BackgroundMesh& bg, const
       if (!(n.norm() > 0)) continue;  // singular point of the parametrisation
       n.normalize();
       if (g.face_reversed(f)) n = -n;
-      for (double sign : {1.0, -1.0}) {
+      for (double sign : signs) {
         auto hit = bvh.ray(bg.xyz[v], sign * n, max_gap, [&](int t) {
-          return tri_n[t].dot(n) < -0.5 && !on_own_face(bg.tri_face[t]);
+          return facing(t, n) && !on_own_face(bg.tri_face[t]);
         });
-        if (hit.tri < 0 || !(hit.t > 0)) continue;
+        if (hit.tri < 0 || !(hit.t > touch)) continue;
         // A wedge closing at a curve shared with the hit face (a sharp trailing
         // edge) is not a gap: its thickness falls to zero at that curve. A gap
         // is at least ten times thinner than its distance to such a curve.
         if (distance_to_shared_curve(f, bg.tri_face[hit.tri]) < 10.0 * hit.t) continue;
-        h[v] = std::min(h[v], hit.t / face_mu(p, f));
+        auto& out = sign > 0 ? h.fluid : h.solid;
+        out[v] = std::min(out[v], hit.t / face_mu(p, f));
       }
     }
   });

@@ -8,7 +8,8 @@ const char* limit_name(Limit l) {
     case Limit::Curvature: return "curvature";
     case Limit::FaceProximity: return "face proximity (2A/l)";
     case Limit::CurveLength: return "curve length";
-    case Limit::Gap: return "gap between faces";
+    case Limit::Gap: return "gap through the fluid";
+    case Limit::Thickness: return "thickness of the solid";
     case Limit::User: return "user size";
     case Limit::HMin: return "h_min";
   }

@@ -11,8 +11,8 @@ namespace sizemesh {
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
 // What set a vertex's initial size h_a (paper 3.4).
-enum class Limit : int8_t { HMax = 0, Curvature, FaceProximity, CurveLength, Gap, User, HMin };
-constexpr int kNumLimits = 7;
+enum class Limit : int8_t { HMax = 0, Curvature, FaceProximity, CurveLength, Gap, Thickness, User, HMin };
+constexpr int kNumLimits = 8;
 const char* limit_name(Limit l);
 
 struct SizeMap {

@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
   app.add_option("--config", o.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json); a flag given on the command line wins over the file")->group(sizing);
+  std::string gap_side = "auto";
+  app.add_option("--gap-side", gap_side,
+                 "gaps to resolve: fluid (between parts), solid (plate thickness), both; auto: fluid for a closed "
+                 "model, both for sheets and unsewn faces")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "fluid", "solid", "both"}))->group(sizing);
   std::string solver = "exact";
   app.add_option("--smoother", solver, "edge-gradation solver: exact (Dijkstra) or lpsolve (reference LP)")
       ->capture_default_str()->check(CLI::IsMember({"exact", "lpsolve"}))->group(sizing);
@@ -71,6 +76,8 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   o.edge_solver = solver == "lpsolve" ? EdgeSolver::LpSolve : EdgeSolver::Dijkstra;
+  o.sizing.gap_side = gap_side_from(gap_side);
+  if (app.count("--gap-side") > 0) o.sizing_from_cli.insert("gap_side");
   for (const SizingOption& opt : sizing_options())
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);
   try {

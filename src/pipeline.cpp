@@ -34,6 +34,7 @@ void check_triangle_budget(const TriangleEstimate& e, double max_triangles, cons
     case Limit::FaceProximity:
     case Limit::CurveLength:
     case Limit::Gap: option = "--mu-d, --no-gaps or --h-min"; break;
+    case Limit::Thickness: option = "--gap-side fluid, --mu-d or --h-min"; break;
     case Limit::User: option = "the config's local sizes"; break;
     case Limit::HMin: option = "--h-min"; break;
   }
@@ -56,6 +57,26 @@ void warn_local_intersections(const MeshQuality& q) {
 }
 
 // The union is what makes the surface closed: say when it could not be kept.
+// Shares of the triangles and of the area whose target size is within 5% of
+// h_min; one warning line when h_min sets more than 5% of the triangles.
+void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r) {
+  double n = 0, area = 0, total = 0;
+  for (const auto& t : m.tris) {
+    const double a = 0.5 * (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]).norm();
+    total += a;
+    if ((target[t[0]] + target[t[1]] + target[t[2]]) / 3 <= 1.05 * h_min) n += 1, area += a;
+  }
+  r.at_h_min_share = m.tris.empty() ? 0 : n / m.tris.size();
+  r.at_h_min_area_share = total > 0 ? area / total : 0;
+}
+
+void warn_h_min(const RunReport& r, double h_min) {
+  if (r.at_h_min_share > 0.05)
+    std::cerr << std::setprecision(3) << "sizemesh: warning: " << 100 * r.at_h_min_share << "% of the triangles ("
+              << 100 * r.at_h_min_area_share << "% of the area) are sized at h_min " << h_min
+              << ": lower --h-min to resolve those regions, or raise it for fewer triangles\n";
+}
+
 void warn_preparation(const Preparation& p) {
   if (!p.fallback.empty())
     std::cerr << "sizemesh: warning: geometry preparation incomplete (" << p.fallback
@@ -127,14 +148,17 @@ int run(const RunOptions& o) {
     report.mesh = &mesh;
     report.quality = mesh_quality(mesh, model, query);
     clock.lap("quality");
-    write_mesh(o.output, mesh, source_face, report.quality.min_angle, target_sizes(mesh, query));
+    const std::vector<double> target = target_sizes(mesh, query);
+    write_mesh(o.output, mesh, source_face, report.quality.min_angle, target);
     clock.lap("output");
+    measure_h_min(mesh, target, h.h_min, report);
     if (o.verbose) print_mesh_summary(report, std::cout);
   }
   if (!o.report.empty()) write_report(o.report, report);
   for (const auto& f : mesh.failures)
     std::cerr << "sizemesh: warning: face " << f.face << " was not meshed: " << f.reason << "\n";
   warn_local_intersections(report.quality);
+  if (report.mesh) warn_h_min(report, h.h_min);
   return mesh.failures.empty() ? kOk : kPartial;
 }
 

@@ -73,6 +73,8 @@ nlohmann::json report_json(const RunReport& r) {
                  {"low_quality_below_24deg", q.below_24},
                  {"low_quality_share", q.below_24 / n},
                  {"size_conformity", q.size_conformity},
+                 {"share_at_h_min", r.at_h_min_share},
+                 {"area_share_at_h_min", r.at_h_min_area_share},
                  {"boundary_edges", q.boundary_edges},
                  {"nonmanifold_edges", q.nonmanifold_edges},
                  {"orientation_conflicts", q.orientation_conflicts},
@@ -112,6 +114,8 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
       << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
       << " (" << 100.0 * q.below_12 / n << "%; " << q.forced_below_12 << " forced by CAD corners), below 24 deg: " << q.below_24 << " (" << 100.0 * q.below_24 / n
       << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
+      << "sized at h_min: " << 100.0 * r.at_h_min_share << "% of the triangles, " << 100.0 * r.at_h_min_area_share
+      << "% of the area\n"
       << "topology: " << q.boundary_edges << " boundary edges, " << q.nonmanifold_edges << " non-manifold edges, "
       << q.inverted << " inverted triangles, " << q.self_intersections << " intersecting triangle pairs ("
       << q.local_self_intersections << " within a face or across a shared curve)\n"

@@ -29,6 +29,9 @@ struct RunReport {
   SmoothStats smoothing;
   const SurfaceMesh* mesh = nullptr;
   MeshQuality quality;
+  // Triangles whose target size (mean of their nodes') is within 5% of h_min,
+  // as shares of the triangles and of the area: how much h_min drives the mesh.
+  double at_h_min_share = 0, at_h_min_area_share = 0;
   QueryStats queries;
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
 };

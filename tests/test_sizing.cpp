@@ -157,26 +157,64 @@ TEST_CASE("a box with one tiny edge grades away from it at exactly the bound") {
   CHECK(c.max_triangle_ratio <= 1 + 1e-9);
 }
 
-TEST_CASE("a thin plate gets the local proximity size gap / mu_d on both its large faces") {
-  const double t = 0.1;
-  Model m = model_from_shape(BRepPrimAPI_MakeBox(10.0, 10.0, t).Shape());
+TEST_CASE("a thin closed slab is not refined across its thickness by default, fully with the solid side") {
+  // 100 mm wide, 1 mm thick: the rays into the solid see the thickness, the
+  // rays out of it see nothing.
+  const double t = 1.0;
+  Model m = model_from_shape(BRepPrimAPI_MakeBox(100.0, 100.0, t).Shape());
+  REQUIRE(m.closed());
   BackgroundMesh bg = build_background_mesh(m);
   SizingParams p;
-  const std::vector<double> gap = gap_sizes(m, bg, p, 100.0);
-  int checked = 0;
+  const GapSizes by_default = gap_sizes(m, bg, p, 1000.0, 1e-6);
+  p.gap_side = GapSide::Solid;
+  const GapSizes solid = gap_sizes(m, bg, p, 1000.0, 1e-6);
+  p.gap_side = GapSide::Both;
+  const GapSizes both = gap_sizes(m, bg, p, 1000.0, 1e-6);
+  REQUIRE(bg.num_vertices() >= 8);
   for (int v = 0; v < bg.num_vertices(); ++v) {
-    const Vec3& x = bg.xyz[v];
-    const bool inner = x.x() > 1e-9 && x.x() < 10 - 1e-9 && x.y() > 1e-9 && x.y() < 10 - 1e-9;
-    if (!inner) continue;  // the plate's rim: rays graze the side faces
-    ++checked;
-    CHECK(gap[v] == Approx(t / 2).epsilon(1e-9));
+    CHECK(by_default.fluid[v] == kNoLimit);
+    CHECK(by_default.solid[v] == kNoLimit);
+    CHECK(solid.fluid[v] == kNoLimit);
+    CHECK(solid.solid[v] == Approx(t / 2).epsilon(1e-9));  // BRepMesh puts every node on the rim
+    CHECK(both.solid[v] == solid.solid[v]);
   }
-  CHECK(checked == 0);  // BRepMesh puts no nodes inside a planar rectangle ...
-  for (int v = 0; v < bg.num_vertices(); ++v) CHECK(gap[v] == Approx(t / 2).epsilon(1e-9));  // ... the rim sees the gap
+  // With the background refined as in the pipeline, the big faces get inner
+  // vertices: by default none is sized by the thickness, with the solid side all are.
+  SizingParams q;
+  q.h_max = 10;
+  auto refined = [&](GapSide side) {
+    q.gap_side = side;
+    BackgroundMesh b = build_background_mesh(m);
+    SizeMap map = refine_background(m, b, q, m.info().diagonal());
+    return std::make_pair(std::move(b), std::move(map));
+  };
+  const auto [bd, d] = refined(GapSide::Auto);
+  const auto [bs, s] = refined(GapSide::Solid);
+  // Inner vertices of the two big faces (z = 0 and z = t).
+  auto big = [&](const BackgroundMesh& b, int v) {
+    return b.dim[v] == 2 && (std::abs(b.xyz[v].z()) < 1e-9 || std::abs(b.xyz[v].z() - t) < 1e-9);
+  };
+  int inner_default = 0, inner_solid = 0;
+  for (int v = 0; v < bd.num_vertices(); ++v) {
+    CHECK(d.limit[v] != Limit::Thickness);
+    if (big(bd, v)) {
+      ++inner_default;
+      CHECK(d.h_initial[v] > 4 * t);
+    }
+  }
+  for (int v = 0; v < bs.num_vertices(); ++v) {
+    if (big(bs, v)) {
+      CHECK(s.h_initial[v] <= t / 2 + 1e-12);
+      ++inner_solid;
+      CHECK(s.limit[v] == Limit::Thickness);
+    }
+  }
+  CHECK(inner_default > 0);
+  CHECK(inner_solid > 0);
 }
 
-TEST_CASE("two parallel blocks close together get gap / mu_d between them, and only with gaps on") {
-  const double gap = 0.1;
+TEST_CASE("two parallel slabs close together get gap / mu_d in the slot by default, and only with gaps on") {
+  const double gap = 0.1;  // through the fluid; each slab is ten times thicker
   TopoDS_Compound pair;
   BRep_Builder b;
   b.MakeCompound(pair);
@@ -293,6 +331,9 @@ TEST_CASE("bad sizing parameters give one clear error and a non-zero exit") {
   expect_error("--h-min 10 --h-max 1", "is larger than h_max");
   expect_error("--deviation -1", "deviation must be zero (none) or positive");
   expect_error("--config " + config("dev.json", R"({"deviation": "fine"})"), "deviation must be a number");
+  expect_error("--config " + config("side.json", R"({"gap_side": "sideways"})"), "gap side must be auto, fluid, solid or both");
+  expect_error("--config " + config("side2.json", R"({"gap_side": 1})"), "gap_side must be a string");
+  CHECK(test::run_sizemesh(wing + " -q --gap-side sideways").status == 2);
   expect_error("--config " + config("id.json", R"({"face_size": {"99": 1.0}})"), "names face 99 but the model has 11");
   expect_error("--config " + config("expr.json", R"({"face_size": {"1": "2 * (x + "}})"), "malformed size expression");
   expect_error("--config " + config("neg.json", R"({"face_size": {"1": "x - 1e9"}})"), "sizes must be positive");
