@@ -56,18 +56,32 @@ double total_area(const Geometry& g) {
   return a;
 }
 
-// Meshes the model at size h and checks the closed-surface invariants.
-SurfaceMesh mesh_closed(const Model& model, double h) {
+// Meshes the model at size h: every face, nothing inverted or crossing.
+std::pair<SurfaceMesh, MeshQuality> mesh_checked(const Model& model, double h) {
   const UniformSize size(h);
-  const SurfaceMesh m = mesh_surface(model, size);
-  const MeshQuality q = mesh_quality(m, model, size);
+  SurfaceMesh m = mesh_surface(model, size);
   REQUIRE(m.failures.empty());
+  MeshQuality q = mesh_quality(m, model, size);
+  CHECK(q.inverted == 0);
+  CHECK(q.self_intersections == 0);
+  return {std::move(m), std::move(q)};
+}
+
+// ... and a closed, consistently oriented surface.
+SurfaceMesh mesh_closed(const Model& model, double h) {
+  auto [m, q] = mesh_checked(model, h);
   CHECK(q.boundary_edges == 0);
   CHECK(q.nonmanifold_edges == 0);
   CHECK(q.orientation_conflicts == 0);
-  CHECK(q.inverted == 0);
-  CHECK(q.self_intersections == 0);
   return m;
+}
+
+// Triangles using each mesh edge.
+std::map<std::pair<int, int>, int> edge_uses(const SurfaceMesh& m) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : m.tris)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+  return uses;
 }
 
 }  // namespace
@@ -213,23 +227,16 @@ TEST_CASE("a T of two plates is imprinted: the junction curve is shared by three
   CHECK(junction == 1);
   CHECK(on_line == 3);
 
-  const UniformSize size(0.1);
-  const SurfaceMesh m = mesh_surface(model, size);
-  REQUIRE(m.failures.empty());
-  const MeshQuality q = mesh_quality(m, model, size);
-  CHECK(q.self_intersections == 0);
-  CHECK(q.inverted == 0);
-  // Mesh edges on the junction are used by three triangles; no other edge is.
-  std::map<std::pair<int, int>, int> edge_use;
+  const auto [m, q] = mesh_checked(model, 0.1);
   std::set<std::array<int, 3>> seen;
   for (const auto& t : m.tris) {
     std::array<int, 3> key = t;
     std::sort(key.begin(), key.end());
     CHECK(seen.insert(key).second);  // no duplicate triangle
-    for (int k = 0; k < 3; ++k) ++edge_use[std::minmax(t[k], t[(k + 1) % 3])];
   }
+  // Mesh edges on the junction are used by three triangles; no other edge is.
   int triple = 0;
-  for (const auto& [e, n] : edge_use) {
+  for (const auto& [e, n] : edge_uses(m)) {
     if (n < 3) continue;
     ++triple;
     CHECK(n == 3);
@@ -253,17 +260,9 @@ TEST_CASE("a sheet fin standing on a cylinder fuselage is imprinted on it, its p
   CHECK(p.fallback.empty());
   // Fuselage area, plus the fin above z = 1 (2 x 1).
   CHECK(total_area(model) == Approx(2 * kPi * 10 + 2 * kPi + 2.0).epsilon(1e-9));
-  const UniformSize size(0.1);
-  const SurfaceMesh m = mesh_surface(model, size);
-  REQUIRE(m.failures.empty());
-  const MeshQuality q = mesh_quality(m, model, size);
-  CHECK(q.self_intersections == 0);
-  CHECK(q.inverted == 0);
+  const auto [m, q] = mesh_checked(model, 0.1);
   // Free edges only on the fin's three outer sides (x = 4, x = 6, z = 2).
-  std::map<std::pair<int, int>, int> edge_use;
-  for (const auto& t : m.tris)
-    for (int k = 0; k < 3; ++k) ++edge_use[std::minmax(t[k], t[(k + 1) % 3])];
-  for (const auto& [e, n] : edge_use) {
+  for (const auto& [e, n] : edge_uses(m)) {
     if (n != 1) continue;
     const Vec3 mid = 0.5 * (m.xyz[e.first] + m.xyz[e.second]);
     CHECK(std::abs(mid.y()) < 1e-9);
