@@ -270,6 +270,46 @@ TEST_CASE("a sheet fin standing on a cylinder fuselage is imprinted on it, its p
   }
 }
 
+TEST_CASE("fuselage, wing through it and sheet fin on it: one surface, exact area, conforming junctions") {
+  const TopoDS_Shape fuselage = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), 1.0, 10.0).Shape();
+  const TopoDS_Shape wing = BRepPrimAPI_MakeBox(gp_Pnt(3, -6, -0.2), 2.0, 12.0, 0.4).Shape();
+  const TopoDS_Shape fin = quad({6, 0, 0.5}, {8, 0, 0.5}, {8, 0, 2.5}, {6, 0, 2.5});
+  const Model model = model_from_shape(compound({fuselage, wing, fin}));
+  const Preparation& p = model.info().preparation;
+  REQUIRE(p.components.size() == 3);
+  CHECK(p.fused);
+  CHECK(p.sheets_imprinted == 1);
+  CHECK(p.sheet_pieces_dropped == 1);
+  CHECK(p.fallback.empty());
+  CHECK(model.num_faces() == 14);  // the 13 of the wing-body union and the fin above z = 1
+  const double s = 0.2, c = std::sqrt(1 - s * s);
+  const double cylinder = 2 * kPi * 10 + 2 * kPi - 2 * 2 * (2 * std::asin(s));
+  const double box = 2 * (2 * 12 + 2 * 0.4 + 12 * 0.4) - 2 * (2 * 2 * c) - 2 * 2 * (s * c + std::asin(s));
+  CHECK(total_area(model) == Approx(cylinder + box + 2 * 1.5).epsilon(1e-3));
+  const auto [m, q] = mesh_checked(model, 0.1);
+  // Watertight but for the fin's three free sides (x = 6, x = 8, z = 2.5);
+  // the fin's root on the fuselage is used by three triangles.
+  int open = 0, root = 0;
+  for (const auto& [e, n] : edge_uses(m)) {
+    CHECK(n <= 3);
+    if (n == 3) {
+      ++root;
+      for (int v : {e.first, e.second}) {
+        CHECK(std::abs(m.xyz[v].y()) < 1e-9);
+        CHECK(std::abs(m.xyz[v].z() - 1) < 1e-9);
+      }
+    }
+    if (n != 1) continue;
+    ++open;
+    const Vec3 mid = 0.5 * (m.xyz[e.first] + m.xyz[e.second]);
+    CHECK(std::abs(mid.y()) < 1e-9);
+    CHECK(mid.z() > 1 - 1e-9);
+  }
+  CHECK(open >= 3 * 10);
+  CHECK(root >= 10);
+  CHECK(q.nonmanifold_edges == root);
+}
+
 TEST_CASE("a closed solid passes through the preparation unchanged") {
   const Model model = model_from_shape(BRepPrimAPI_MakeCylinder(1.0, 2.0).Shape());
   const Preparation& p = model.info().preparation;
