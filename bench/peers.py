@@ -9,14 +9,16 @@ surface relative to the bounding-box diagonal. Prints a Markdown table and
 ratios against Gmsh. Never fails on numbers.
 
     /usr/bin/python3 bench/peers.py [--build build] [--models DIR] [--phi 10 5] [--timeout 300] [--only NAME...]
-    /usr/bin/python3 bench/peers.py --sweep [--only NAME...]
+    /usr/bin/python3 bench/peers.py --sweep [--only NAME...] [--out DIR]
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
 with phi_c = 30, and with 90 at the coarse bounds; Netgen 6.2 ignores its meshing parameters on OCC geometry
 from Python, so it gives one point), and for every sizemesh mesh the triangles a
 peer needs for the same maximum centroid distance are interpolated (log-log)
-between that peer's two bracketing meshes. A ratio below 1 means sizemesh
+between that peer's two bracketing meshes. The curves are also written as
+sweep.csv and plotted as sweep.png (triangles against maximum distance, one
+panel per model; needs python3-matplotlib). A ratio below 1 means sizemesh
 needs fewer triangles for the same surface accuracy; "<0.2" means the peer's
 finest run is still less accurate, with 5 times sizemesh's triangles. sizemesh runs twice:
 with its default proximity sizing, and as "sizemesh-fidelity": proximity off and a
@@ -154,7 +156,7 @@ def sweep(a):
     tmp = tempfile.mkdtemp(prefix="sizemesh_sweep_")
     print("| model | tool | level | wall s | triangles | <12 deg | <24 deg | max dist/diag |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
-    curves = {}
+    curves, rows = {}, []
     for name in MODELS:
         if a.only and not any(o in name for o in a.only):
             continue
@@ -170,6 +172,8 @@ def sweep(a):
                     print("| %s | %s | %s | %s | - | - | - | - |" % (name, tool, tag, err or "no mesh"))
                     continue
                 curves.setdefault((name, tool), []).append((m["max_centroid_distance_rel"], m["triangles"]))
+                rows.append((name, tool, tag, m["triangles"], m["max_centroid_distance_rel"],
+                             m["mean_centroid_distance_rel"], m["share_below_12"], wall))
                 print("| %s | %s | %s | %.2f | %d | %.3f%% | %.3f%% | %.2e |" % (
                     name, tool, tag, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
                     m["max_centroid_distance_rel"]))
@@ -189,7 +193,47 @@ def sweep(a):
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, tool, d, n, ratio[0], ratio[1]))
     with open(os.path.join(tmp, "curves.json"), "w") as f:
         json.dump({"%s|%s" % k: v for k, v in curves.items()}, f, indent=1)
-    print("\nmeshes and curves.json in", tmp)
+    out = a.out or tmp
+    os.makedirs(out, exist_ok=True)
+    write_sweep_csv(os.path.join(out, "sweep.csv"), rows)
+    plot_sweep(os.path.join(out, "sweep.png"), curves)
+    print("\nmeshes and curves.json in", tmp, "; sweep.csv and sweep.png in", out)
+
+
+def write_sweep_csv(path, rows):
+    """One line per mesh: the curve points behind the plot."""
+    with open(path, "w") as f:
+        f.write("model,tool,level,triangles,max_distance_rel,mean_distance_rel,share_below_12deg,wall_s\n")
+        for r in rows:
+            f.write("%s,%s,%s,%d,%.6e,%.6e,%.6f,%.3f\n" % r)
+
+
+def plot_sweep(path, curves):
+    """Triangles against maximum distance (log-log), one panel per model, one curve per tool."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("no plot: python3-matplotlib is not installed")
+        return
+    models = sorted({name for name, _ in curves})
+    if not models:
+        return
+    fig, axes = plt.subplots(1, len(models), figsize=(5 * len(models), 4.5), squeeze=False)
+    for ax, name in zip(axes[0], models):
+        for (m, tool), pts in sorted(curves.items()):
+            if m != name or not pts:
+                continue
+            pts = sorted(p for p in pts if p[0] > 0)
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool, markersize=4)
+        ax.set_title(name)
+        ax.set_xlabel("max distance of centroids from the CAD / diagonal")
+        ax.set_ylabel("triangles")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
 
 
 def main():
@@ -201,6 +245,7 @@ def main():
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--tools", nargs="*", default=["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"])
     ap.add_argument("--sweep", action="store_true")
+    ap.add_argument("--out", help="--sweep: directory for sweep.csv and sweep.png (default: the scratch directory)")
     a = ap.parse_args()
     if a.sweep:
         return sweep(a)
