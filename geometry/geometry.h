@@ -34,9 +34,12 @@ class Geometry {
  public:
   virtual ~Geometry() = default;
 
-  // True when the faces bound volumes (no free curve) with normals pointing
-  // out of them: the fluid is on the normals' side.
+  // True when the faces bound volumes (no free curve), normals out of them.
   virtual bool closed() const { return false; }
+  // Side of the surface the fluid is on: +1 along the normals (a body in
+  // the flow), -1 against them (the model is the flow domain, its cavities
+  // the bodies), 0 unknown (sheets, open models).
+  virtual int fluid_side() const { return 0; }
 
   virtual int num_faces() const = 0;
   virtual int num_curves() const = 0;

@@ -331,6 +331,16 @@ const ModelInfo& Model::info() const { return impl_->info; }
 std::string Model::face_name(int face) const { return impl_->face_names.at(face - 1); }
 int Model::source_face(int face) const { return impl_->source_face.at(face - 1); }
 
+int Model::fluid_side() const {
+  if (!closed()) return 0;
+  if (impl_->solids.Extent() == 1) {
+    TopTools_IndexedMapOfShape shells;
+    TopExp::MapShapes(impl_->solids(1), TopAbs_SHELL, shells);
+    if (shells.Extent() > 1) return -1;
+  }
+  return 1;
+}
+
 std::vector<std::vector<int>> Model::solid_faces() const {
   std::vector<std::vector<int>> out;
   for (int s = 1; s <= impl_->solids.Extent(); ++s) {

@@ -53,6 +53,9 @@ class Model : public Geometry {
   std::vector<std::vector<int>> solid_faces() const;
   // True when every non-degenerate curve bounds exactly two face sides.
   bool closed() const override { return info().free_curves_after_sewing == 0; }
+  // A closed model that is one solid with cavities (several shells) is taken
+  // for a flow domain: the fluid is inside it. Other closed models are bodies.
+  int fluid_side() const override;
 
   int num_faces() const override;
   int num_curves() const override;

@@ -18,7 +18,8 @@ struct UserSize {
 // Which gaps the proximity size resolves: across the fluid (between parts, a
 // slot between a flap and a wing), across the solid (a plate's thickness), or
 // both. Auto: fluid for a closed model (geometry/prepare.h makes aircraft
-// closed), both otherwise.
+// closed; a solid with cavities is a flow domain, its fluid inside), both
+// otherwise.
 enum class GapSide { Auto, Fluid, Solid, Both };
 const char* gap_side_name(GapSide s);
 GapSide gap_side_from(const std::string& name);  // throws Error on an unknown name

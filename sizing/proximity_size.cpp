@@ -132,10 +132,14 @@ GapSizes gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingPara
   const int nv = bg.num_vertices(), nt = bg.num_triangles();
   GapSizes h{std::vector<double>(nv, kNoLimit), std::vector<double>(nv, kNoLimit)};
   if (nt == 0) return h;
-  const GapSide side = p.gap_side == GapSide::Auto ? (g.closed() ? GapSide::Fluid : GapSide::Both) : p.gap_side;
+  const int fluid = g.fluid_side();
+  const GapSide side = p.gap_side == GapSide::Auto ? (fluid != 0 ? GapSide::Fluid : GapSide::Both) : p.gap_side;
+  // Ray directions along the normal: +1 crosses the fluid on a body, the
+  // solid on a flow domain.
+  const double to_fluid = fluid < 0 ? -1.0 : 1.0;
   std::vector<double> signs;
-  if (side != GapSide::Solid) signs.push_back(1.0);   // out of the solid: through the fluid
-  if (side != GapSide::Fluid) signs.push_back(-1.0);  // into the solid: its thickness
+  if (side != GapSide::Solid) signs.push_back(to_fluid);   // through the fluid
+  if (side != GapSide::Fluid) signs.push_back(-to_fluid);  // through the solid: its thickness
   // Unit normals of the background triangles, oriented as their faces (out
   // of the solid on a closed model).
   std::vector<Vec3> tri_n(nt);
@@ -203,7 +207,7 @@ GapSizes gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingPara
         // edge) is not a gap: its thickness falls to zero at that curve. A gap
         // is at least ten times thinner than its distance to such a curve.
         if (distance_to_shared_curve(f, bg.tri_face[hit.tri]) < 10.0 * hit.t) continue;
-        auto& out = sign > 0 ? h.fluid : h.solid;
+        auto& out = sign == to_fluid ? h.fluid : h.solid;
         out[v] = std::min(out[v], hit.t / face_mu(p, f));
       }
     }

@@ -1,5 +1,6 @@
 // Size map (paper 3.2-3.4): initial sizes on analytic shapes, exact gradation
 // smoothing on every shared model, local controls where set and nowhere else.
+#include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -211,6 +212,40 @@ TEST_CASE("a thin closed slab is not refined across its thickness by default, fu
   }
   CHECK(inner_default > 0);
   CHECK(inner_solid > 0);
+}
+
+TEST_CASE("in a flow domain (a solid with a cavity) the fluid is inside: gaps to the walls count, the body's thickness not") {
+  // Domain: a 10 mm box. Body: a slab 1 mm thick, 0.3 mm above the floor.
+  const TopoDS_Shape domain = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(10.0, 10.0, 10.0).Shape(),
+                                              BRepPrimAPI_MakeBox(gp_Pnt(2, 2, 0.3), 6.0, 6.0, 1.0).Shape())
+                                  .Shape();
+  Model m = model_from_shape(domain);
+  REQUIRE(m.closed());
+  CHECK(m.fluid_side() == -1);
+  CHECK(model_from_shape(BRepPrimAPI_MakeBox(1.0, 1.0, 1.0).Shape()).fluid_side() == 1);
+  BackgroundMesh bg = build_background_mesh(m);
+  SizingParams p;
+  const GapSizes by_default = gap_sizes(m, bg, p, 5.0, 1e-6);
+  p.gap_side = GapSide::Solid;
+  const GapSizes solid = gap_sizes(m, bg, p, 5.0, 1e-6);
+  int under = 0, over = 0;
+  for (int v = 0; v < bg.num_vertices(); ++v) {
+    const Vec3& x = bg.xyz[v];
+    const bool on_slab = x.x() > 2 - 1e-9 && x.x() < 8 + 1e-9 && x.y() > 2 - 1e-9 && x.y() < 8 + 1e-9;
+    if (!on_slab) continue;
+    if (std::abs(x.z() - 0.3) < 1e-9) {  // the slab's underside faces the floor across 0.3 of fluid
+      ++under;
+      CHECK(by_default.fluid[v] == Approx(0.15).epsilon(1e-9));
+    }
+    if (std::abs(x.z() - 1.3) < 1e-9) {  // its top rim (BRepMesh's only nodes) sees the side walls 2 away
+      ++over;
+      CHECK(by_default.fluid[v] == Approx(1.0).epsilon(1e-9));
+    }
+    CHECK(by_default.solid[v] == kNoLimit);
+    if (std::abs(x.z() - 0.3) < 1e-9 || std::abs(x.z() - 1.3) < 1e-9) CHECK(solid.solid[v] == Approx(0.5).epsilon(1e-9));
+  }
+  CHECK(under >= 4);
+  CHECK(over >= 4);
 }
 
 TEST_CASE("two parallel slabs close together get gap / mu_d in the slot by default, and only with gaps on") {
