@@ -104,6 +104,12 @@ class Front {
                    std::to_string(alive_) + " front edges left)";
         return fail(r);
       }
+      if (work_ > kWorkPerStep * max_steps_) {
+        r.reason = "the advancing front spent its work budget after " + std::to_string(steps_) + " steps (" +
+                   std::to_string(work_) + " front edges and nodes looked at, " + std::to_string(alive_) +
+                   " front edges left)";
+        return fail(r);
+      }
       if (advance(ei, levels_[e.tries])) continue;
       FrontEdge& e2 = edges_[ei];
       if (++e2.tries >= kMaxTries) {
@@ -216,6 +222,7 @@ class Front {
     if (!within_open_angle(a, ub, uc) || !within_open_angle(b, uc, ua) ||
         (c.node >= 0 && !within_open_angle(c.node, ua, ub)))
       return -10;
+    work_ += static_cast<long long>(near_edges_.size() + near_nodes_.size());
     // New edges must cross no front edge.
     const bool new_ac = c.node < 0 || find_edge(c.node, a) < 0;
     const bool new_cb = c.node < 0 || find_edge(b, c.node) < 0;
@@ -490,6 +497,7 @@ class Front {
     near_edges_.clear();
     near_nodes_.clear();
     grid_.query(lo, hi, [&](int e) {
+      ++work_;
       if (stamp_[e] == visit_ || !edges_[e].alive) return;
       stamp_[e] = visit_;
       near_edges_.push_back(e);
@@ -508,6 +516,13 @@ class Front {
   const Level* levels_;
   long long max_steps_;  // tries at front edges, successful or not
   long long steps_ = 0;
+  // Front edges and nodes looked at: a step's cost grows with the front near
+  // it, so a front crowded into a small part of uv (a corrupt or badly
+  // parametrised face) is stopped by this budget before the step budget.
+  // Sound faces look at up to ~1700 per step (impeller), against 2000 per
+  // budgeted step, and the step budget is 4 times the estimate.
+  static constexpr long long kWorkPerStep = 2000;
+  long long work_ = 0;
   std::vector<FrontEdge> edges_;
   std::vector<unsigned> stamp_, node_stamp_;
   unsigned visit_ = 0;
