@@ -360,7 +360,11 @@ int Model::num_points() const { return impl_->vertices.Extent(); }
 SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
   gp_Pnt p;
   gp_Vec du, dv;
-  impl_->face_data[face - 1].surface->D1(uv.x(), uv.y(), p, du, dv);
+  try {
+    impl_->face_data[face - 1].surface->D1(uv.x(), uv.y(), p, du, dv);
+  } catch (const Standard_Failure& e) {
+    throw EvaluationError("face " + std::to_string(face) + ": " + e.GetMessageString());
+  }
   return {to_vec(p), to_vec(du), to_vec(dv)};
 }
 
@@ -415,7 +419,11 @@ bool Model::curve_degenerated(int curve) const { return impl_->curve_data[curve 
 Vec3 Model::eval_curve(int curve, double t) const {
   const auto& c = impl_->curve_data[curve - 1];
   if (c.curve.IsNull()) return point_xyz(c.start_point);
-  return to_vec(c.curve->Value(t));
+  try {
+    return to_vec(c.curve->Value(t));
+  } catch (const Standard_Failure& e) {
+    throw EvaluationError("curve " + std::to_string(curve) + ": " + e.GetMessageString());
+  }
 }
 
 Vec3 Model::curve_tangent(int curve, double t) const {
@@ -423,7 +431,11 @@ Vec3 Model::curve_tangent(int curve, double t) const {
   if (c.curve.IsNull()) return Vec3::Zero();
   gp_Pnt p;
   gp_Vec d;
-  c.curve->D1(t, p, d);
+  try {
+    c.curve->D1(t, p, d);
+  } catch (const Standard_Failure& e) {
+    throw EvaluationError("curve " + std::to_string(curve) + ": " + e.GetMessageString());
+  }
   return to_vec(d);
 }
 
@@ -447,10 +459,15 @@ int Model::curve_end_point(int curve) const { return impl_->curve_data[curve - 1
 Vec2 Model::eval_pcurve(int curve, int face, int side, double t) const {
   for (const auto& pc : impl_->curve_data[curve - 1].pcurves)
     if (pc.face == face && pc.side == side) {
-      gp_Pnt2d p = pc.curve->Value(t);
-      return {p.X(), p.Y()};
+      try {
+        const gp_Pnt2d p = pc.curve->Value(t);
+        return {p.X(), p.Y()};
+      } catch (const Standard_Failure& e) {
+        throw EvaluationError("curve " + std::to_string(curve) + " on face " + std::to_string(face) + ": " +
+                              e.GetMessageString());
+      }
     }
-  throw Error("curve " + std::to_string(curve) + " has no parameter curve on face " + std::to_string(face));
+  throw EvaluationError("curve " + std::to_string(curve) + " has no parameter curve on face " + std::to_string(face));
 }
 
 Vec3 Model::point_xyz(int point) const {

@@ -271,7 +271,7 @@ class Front {
       Vec3 nc;
       try {
         nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
-      } catch (...) {
+      } catch (const EvaluationError&) {
         return -9;
       }
       if (nc.squaredNorm() > 0 && nt.dot(nc) <= std::max(lv.cos_min, 0.0) * lt) return -9;
@@ -364,7 +364,7 @@ class Front {
     bool ideal_ok = std::isfinite(ideal.uv.x()) && std::isfinite(ideal.uv.y());
     try {  // the ideal point may fall outside the surface's parameter range
       if (ideal_ok) ideal.s = fs_.eval(ideal.uv);
-    } catch (...) {
+    } catch (const EvaluationError&) {
       ideal_ok = false;
     }
     const Eigen::Matrix2d Mp = ideal_ok ? ideal.s.metric() : Mm;
@@ -482,7 +482,7 @@ class Front {
       if (!fs_.project(target, uv)) return false;
       out.uv = uv;
       out.s = fs_.eval(uv);
-    } catch (...) {
+    } catch (const EvaluationError&) {
       return false;
     }
     out.node = -1;

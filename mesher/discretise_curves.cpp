@@ -116,7 +116,7 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
       const double integral = std::min(sampled[c].F.back(), double(kMaxSegments));
       nn = std::max(1, static_cast<int>(std::lround(integral)));
       nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
-    } catch (...) {  // the kernel cannot evaluate it: equal parameter steps
+    } catch (const EvaluationError&) {  // the kernel cannot evaluate it: equal parameter steps
       sampled[c] = Sampled();
       double t0, t1;
       g.curve_range(c, t0, t1);

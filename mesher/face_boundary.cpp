@@ -166,7 +166,7 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
         const double dist = (sx.p - sa.p).norm();
         const double edges = dist > 0 ? ring / dist : ring / std::max(sx.h, 1e-300);
         if (std::isfinite(edges)) k = std::clamp(static_cast<int>(std::lround(edges)), 1, 128);
-      } catch (...) {
+      } catch (const EvaluationError&) {
         k = 1;  // the surface cannot be evaluated off the pole: one segment
       }
       for (int j = 1; j < k; ++j) {

@@ -77,7 +77,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
     }
   } catch (const std::exception& e) {
     r.reason = std::string("exception: ") + e.what();
-  } catch (...) {
+  } catch (...) {  // last resort: a kernel exception the geometry did not translate fails this face only
     r.reason = "exception from the geometry kernel";
   }
   r.size_queries = fs.size_queries;
@@ -93,7 +93,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
   CurveMesh cm;
   try {
     cm = discretise_curves(g, h);
-  } catch (...) {  // nothing can be meshed without the curves
+  } catch (const std::exception&) {  // nothing can be meshed without the curves
     for (int f = 1; f <= g.num_faces(); ++f)
       out.failures.push_back({f, "the curves could not be discretised (geometry kernel error)"});
     return out;

@@ -147,7 +147,7 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
       SurfaceSample s;
       try {
         s = fs.eval_shape(uv);
-      } catch (...) {
+      } catch (const EvaluationError&) {
         continue;  // outside what the surface can evaluate: stay
       }
       s.h = si.h;
