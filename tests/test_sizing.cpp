@@ -248,6 +248,34 @@ TEST_CASE("in a flow domain (a solid with a cavity) the fluid is inside: gaps to
   CHECK(over >= 4);
 }
 
+TEST_CASE("two boxes that touch make no gap, united or not") {
+  // 1e-7 apart: far below the model tolerance (1e-5 of the diagonal), so
+  // they touch; a gap size there would be 5e-8.
+  const double apart = 1e-7;
+  TopoDS_Compound pair;
+  BRep_Builder b;
+  b.MakeCompound(pair);
+  b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 10.0, 10.0, 1.0).Shape());
+  b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 1.0 + apart), 10.0, 10.0, 1.0).Shape());
+  for (bool unite : {true, false}) {
+    Model m = model_from_shape(pair, LoadOptions{true, 1e-5, unite});
+    REQUIRE(m.closed());
+    BackgroundMesh bg = build_background_mesh(m);
+    for (GapSide side : {GapSide::Auto, GapSide::Both}) {
+      SizingParams p;
+      p.gap_side = side;
+      const GapSizes g = gap_sizes(m, bg, p, 100.0, 1e-5 * m.info().diagonal());
+      int contact = 0;
+      for (int v = 0; v < bg.num_vertices(); ++v) {
+        if (std::abs(bg.xyz[v].z() - 1.0) > 2 * apart) continue;
+        ++contact;
+        CHECK(g.fluid[v] == kNoLimit);  // the other box's face: touching, no gap
+      }
+      CHECK(contact >= 4);
+    }
+  }
+}
+
 TEST_CASE("two parallel slabs close together get gap / mu_d in the slot by default, and only with gaps on") {
   const double gap = 0.1;  // through the fluid; each slab is ten times thicker
   TopoDS_Compound pair;
