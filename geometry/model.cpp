@@ -52,6 +52,14 @@ int count_free_curves(const TopoDS_Shape& shape) {
   return free;
 }
 
+TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell) {
+  BRepBuilderAPI_MakeSolid make(shell);
+  if (!make.IsDone()) return {};
+  TopoDS_Solid solid = make.Solid();
+  BRepLib::OrientClosedSolid(solid);
+  return solid;
+}
+
 namespace {
 
 double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
@@ -78,12 +86,10 @@ TopoDS_Shape solids_from_closed_shells(const TopoDS_Shape& sewn) {
   b.MakeCompound(out);
   bool any_solid = false;
   for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
-    TopoDS_Shell shell = TopoDS::Shell(ex.Current());
+    const TopoDS_Shell& shell = TopoDS::Shell(ex.Current());
     if (BRep_Tool::IsClosed(shell)) {
-      BRepBuilderAPI_MakeSolid make(shell);
-      if (make.IsDone()) {
-        TopoDS_Solid solid = make.Solid();
-        BRepLib::OrientClosedSolid(solid);
+      const TopoDS_Solid solid = solid_from_shell(shell);
+      if (!solid.IsNull()) {
         b.Add(out, solid);
         any_solid = true;
         continue;

@@ -8,6 +8,8 @@
 #include <TopTools_DataMapOfShapeReal.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Shape.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 
 #include "geometry/model.h"
 
@@ -64,6 +66,9 @@ CadFile sew_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& 
 
 // Curves bounding exactly one face side (seams and degenerate curves excluded).
 int count_free_curves(const TopoDS_Shape& shape);
+
+// The solid a closed shell bounds, oriented outward; null when it cannot be made.
+TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell);
 
 // The prepared shape and, for each of its faces, the id of the sewn face it
 // came from (ids: `original`'s indices).

@@ -21,12 +21,10 @@
 #include <BOPAlgo_CellsBuilder.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
-#include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
-#include <BRepLib.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Builder.hxx>
@@ -216,18 +214,29 @@ bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
   return cls.State() == TopAbs_IN || cls.State() == TopAbs_ON;
 }
 
-TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
-  TopExp_Explorer ex(sewn, TopAbs_SHELL);
-  if (!ex.More()) return {};
-  BRepBuilderAPI_MakeSolid make(TopoDS::Shell(ex.Current()));
-  if (!make.IsDone()) return {};
-  TopoDS_Solid solid = make.Solid();
-  BRepLib::OrientClosedSolid(solid);
-  return solid;
+// True when the face lies inside one of the solids or on its boundary.
+bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, double tol) {
+  for (const auto& s : solids)
+    if (inside_solid(f, s, tol)) return true;
+  return false;
 }
 
-// The repair of one open component. `faces` empty on return means "keep the
-// component as it was".
+// The solid bounded by the first shell of a sewn shape, or null.
+TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
+  TopExp_Explorer ex(sewn, TopAbs_SHELL);
+  return ex.More() ? solid_from_shell(TopoDS::Shell(ex.Current())) : TopoDS_Solid();
+}
+
+// The faces a general fuse made of face f (f itself when it kept it whole).
+FaceList pieces_of(BOPAlgo_Builder& fuse, const TopoDS_Face& f) {  // history queries are not const in OCCT
+  FaceList out;
+  for (const auto& p : fuse.Modified(f)) out.push_back(TopoDS::Face(p));
+  if (out.empty() && !fuse.IsDeleted(f)) out.push_back(f);
+  return out;
+}
+
+// The repair of one open component. A null `closed` on return means "keep
+// the component as it was".
 struct Repair {
   TopoDS_Shape closed;    // the closed, sewn component (a shell), or null
   Sewn sewn;              // the sewing that made it
@@ -339,24 +348,16 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
   std::vector<TopoDS_Shape> solids;
   for (const auto& s : bodies)
     for (TopExp_Explorer ex(s, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
-  auto pieces_of = [&](const TopoDS_Face& f) {
-    FaceList out;
-    for (const auto& p : fuse.Modified(f)) out.push_back(TopoDS::Face(p));
-    if (out.empty() && !fuse.IsDeleted(f)) out.push_back(f);
-    return out;
-  };
   TopTools_MapOfShape dropped;
   for (const auto& s : sheets)
     for (const auto& f : faces_of(s))
-      for (const auto& piece : pieces_of(f)) {
-        bool inside = false;
-        for (const auto& solid : solids) inside = inside || inside_solid(piece, solid, tol);
-        if (inside) dropped.Add(piece);
+      for (const auto& piece : pieces_of(fuse, f)) {
+        if (inside_any(piece, solids, tol)) dropped.Add(piece);
         else follow(f, piece);
       }
   for (const auto& s : bodies)
     for (const auto& f : faces_of(s))
-      for (const auto& piece : pieces_of(f)) follow(f, piece);
+      for (const auto& piece : pieces_of(fuse, f)) follow(f, piece);
   info.sheets_imprinted = static_cast<int>(sheets.size());
   info.sheet_pieces_dropped = dropped.Extent();
   TopoDS_Compound out;
@@ -427,15 +428,10 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   // Faces taken out of one component may lie inside another one (the plane
   // of the left tail inside the right tail): those are internal too.
   for (const auto& f : loose) {
-    bool inside = false;
-    for (const auto& s : solids) inside = inside || inside_solid(f, s, tol);
-    if (inside) ++info.internal_faces_removed;
+    if (inside_any(f, solids, tol)) ++info.internal_faces_removed;
     else sheets.push_back(f);
   }
 
-  BRep_Builder b;
-  TopoDS_Compound result;
-  b.MakeCompound(result);
   if (solids.size() >= 2) {
     TopTools_ListOfShape args;
     for (const auto& s : solids) args.Append(s);
@@ -463,11 +459,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
           continue;
         }
         for (const auto& s : solids)
-          for (const auto& f : faces_of(s)) {
-            if (cells.IsDeleted(f)) continue;
-            const TopTools_ListOfShape& pieces = cells.Modified(f);
-            for (const auto& piece : pieces) follow(f, TopoDS::Face(piece));
-          }
+          for (const auto& f : faces_of(s))
+            for (const auto& piece : pieces_of(cells, f)) follow(f, piece);
         fused = shape;
         info.fallback.clear();
         break;
@@ -489,6 +482,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       return out;
     }
   }
+  BRep_Builder b;
+  TopoDS_Compound result;
+  b.MakeCompound(result);
   for (const auto& s : sheets) b.Add(result, s);
   for (const auto& s : solids) b.Add(result, s);
   out.shape = result;

@@ -51,7 +51,7 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   }
   m.t_proximity = now() - t;
   t = now();
-  GapSizes h_gap{std::vector<double>(bg.num_vertices(), kNoLimit), std::vector<double>(bg.num_vertices(), kNoLimit)};
+  GapSizes h_gap(bg.num_vertices());
   if (p.proximity && p.local_proximity) {
     double mu_max = p.mu_d;
     for (const auto& [f, mu] : p.face_mu_d) mu_max = std::max(mu_max, mu);

@@ -130,7 +130,7 @@ std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& 
 
 GapSizes gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double max_gap, double touch) {
   const int nv = bg.num_vertices(), nt = bg.num_triangles();
-  GapSizes h{std::vector<double>(nv, kNoLimit), std::vector<double>(nv, kNoLimit)};
+  GapSizes h(nv);
   if (nt == 0) return h;
   const int fluid = g.fluid_side();
   const GapSide side = p.gap_side == GapSide::Auto ? (fluid != 0 ? GapSide::Fluid : GapSide::Both) : p.gap_side;
@@ -153,10 +153,9 @@ GapSizes gap_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingPara
   // must face back at the ray's start (its outward normal against the start's,
   // for a ray through the fluid or through the solid alike). Sheets have no
   // outside: any surface facing the start, either way round, counts.
-  const bool oriented = g.closed();
   auto facing = [&](int t, const Vec3& n) {
     const double c = tri_n[t].dot(n);
-    return oriented ? c < -0.5 : std::abs(c) > 0.5;
+    return fluid != 0 ? c < -0.5 : std::abs(c) > 0.5;
   };
   // Curves bounding each face, to tell a gap from the wedge at a shared curve.
   std::vector<std::vector<int>> face_curves(g.num_faces() + 1);

@@ -19,6 +19,11 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
+// The sewn model's face that face f came from (f itself when none is given).
+int source_of(const std::vector<int>& source_face, int f) {
+  return f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f;
+}
+
 // Gmsh 4.1: nodes are listed by the first face that uses them; elements by face.
 void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face) {
   std::ofstream out(path);
@@ -38,9 +43,8 @@ void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<
 
   out.precision(17);
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  auto source = [&](int f) { return f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f; };
   std::map<int, int> groups;  // source face -> entities in it
-  for (const auto& [f, ts] : face_tris) ++groups[source(f)];
+  for (const auto& [f, ts] : face_tris) ++groups[source_of(source_face, f)];
   out << "$PhysicalNames\n" << groups.size() << "\n";
   for (const auto& [s, n] : groups) out << "2 " << s << " \"face_" << s << "\"\n";
   out << "$EndPhysicalNames\n";
@@ -50,7 +54,7 @@ void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<
     for (int t : ts)
       for (int n : m.tris[t]) box.extend(m.xyz[n]);
     out << f << " " << box.min().x() << " " << box.min().y() << " " << box.min().z() << " " << box.max().x() << " "
-        << box.max().y() << " " << box.max().z() << " 1 " << source(f) << " 0\n";
+        << box.max().y() << " " << box.max().z() << " 1 " << source_of(source_face, f) << " 0\n";
   }
   out << "$EndEntities\n";
   out << "$Nodes\n" << face_nodes.size() << " " << used_nodes << " 1 " << m.xyz.size() << "\n";
@@ -106,10 +110,7 @@ void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector
   if (ext == ".stl") return write_stl(path, m);
   std::vector<double> dim(m.node_dim.begin(), m.node_dim.end()), entity(m.node_entity.begin(), m.node_entity.end());
   std::vector<double> source_ids(m.tri_face.size());
-  for (size_t t = 0; t < m.tri_face.size(); ++t) {
-    const int f = m.tri_face[t];
-    source_ids[t] = f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f;
-  }
+  for (size_t t = 0; t < m.tri_face.size(); ++t) source_ids[t] = source_of(source_face, m.tri_face[t]);
   write_vtu(path, m.xyz, m.tris,
             {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
             {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},

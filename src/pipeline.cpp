@@ -56,9 +56,7 @@ void warn_local_intersections(const MeshQuality& q) {
   std::cerr << "): the CAD surfaces there likely cross\n";
 }
 
-// The union is what makes the surface closed: say when it could not be kept.
-// Shares of the triangles and of the area whose target size is within 5% of
-// h_min; one warning line when h_min sets more than 5% of the triangles.
+// Shares of the triangles and of the area whose target size is within 5% of h_min.
 void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r) {
   double n = 0, area = 0, total = 0;
   for (const auto& t : m.tris) {
@@ -70,6 +68,7 @@ void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, doub
   r.at_h_min_area_share = total > 0 ? area / total : 0;
 }
 
+// One warning line when h_min sets more than 5% of the triangles.
 void warn_h_min(const RunReport& r, double h_min) {
   if (r.at_h_min_share > 0.05)
     std::cerr << std::setprecision(3) << "sizemesh: warning: " << 100 * r.at_h_min_share << "% of the triangles ("
@@ -77,6 +76,7 @@ void warn_h_min(const RunReport& r, double h_min) {
               << ": lower --h-min to resolve those regions, or raise it for fewer triangles\n";
 }
 
+// The union is what makes the surface closed: say when it could not be kept.
 void warn_preparation(const Preparation& p) {
   if (!p.fallback.empty())
     std::cerr << "sizemesh: warning: geometry preparation incomplete (" << p.fallback
