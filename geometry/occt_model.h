@@ -7,6 +7,8 @@
 #include <TopTools_DataMapOfShapeInteger.hxx>
 #include <TopTools_DataMapOfShapeReal.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <functional>
+#include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
@@ -80,6 +82,17 @@ struct PreparedShape {
 // `area`: exact areas of the sewn faces.
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
                             const TopTools_DataMapOfShapeReal& area, double tolerance, bool unite, Preparation& info);
+
+// geometry/fold_split.cpp: faces of `shape` split along their C0 knot lines
+// where the surface turns over (normals more than 60 degrees apart) within
+// `band` on either side, so that the fold becomes a curve the mesh follows,
+// or where the parametric speed across the line jumps more than threefold
+// (a front in uv folds triangles that straddle such a line).
+// `follow(face, piece)` is called for every face replaced; `split` counts
+// the faces cut. Returns `shape` itself when nothing is split or the result
+// would be invalid or less closed.
+TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
+                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split);
 
 // sew_shape then prepare_model.
 Model model_from_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,

@@ -56,6 +56,9 @@ using FaceList = std::vector<TopoDS_Face>;
 // Bounds on the repair's trials: sewing one component per trial.
 constexpr int kMaxCandidates = 16;
 constexpr int kMaxRounds = 8;
+// Folds are split where the surface turns over within this share of the
+// model's diagonal: half the default smallest element (sizing/params.h).
+constexpr double kFoldBand = 5e-4;
 
 FaceList faces_of(const TopoDS_Shape& s) {
   FaceList out;
@@ -320,6 +323,15 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
 }
 
 double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm(); }
+double diagonal_of(const Preparation& p) {
+  if (p.components.empty()) return 0;
+  Vec3 lo = p.components[0].bbox_min, hi = p.components[0].bbox_max;
+  for (const Component& c : p.components) {
+    lo = lo.cwiseMin(c.bbox_min);
+    hi = hi.cwiseMax(c.bbox_max);
+  }
+  return (hi - lo).norm();
+}
 
 using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
 
@@ -474,21 +486,19 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       solids = {fused};
     }
   }
-  if (!sheets.empty() && solids.size() + sheets.size() >= 2) {
-    const TopoDS_Shape imprinted = imprint_sheets(solids, sheets, tol, follow, info);
-    if (!imprinted.IsNull()) {
-      out.shape = imprinted;
-      info.faces_after = static_cast<int>(faces_of(imprinted).size());
-      return out;
-    }
+  TopoDS_Shape result;
+  if (!sheets.empty() && solids.size() + sheets.size() >= 2) result = imprint_sheets(solids, sheets, tol, follow, info);
+  if (result.IsNull()) {
+    BRep_Builder b;
+    TopoDS_Compound all;
+    b.MakeCompound(all);
+    for (const auto& s : sheets) b.Add(all, s);
+    for (const auto& s : solids) b.Add(all, s);
+    result = all;
   }
-  BRep_Builder b;
-  TopoDS_Compound result;
-  b.MakeCompound(result);
-  for (const auto& s : sheets) b.Add(result, s);
-  for (const auto& s : solids) b.Add(result, s);
-  out.shape = result;
-  info.faces_after = static_cast<int>(faces_of(result).size());
+  // Folds narrower than half the default smallest element become curves.
+  out.shape = split_folds(result, kFoldBand * diagonal_of(info), follow, info.faces_split_at_folds);
+  info.faces_after = static_cast<int>(faces_of(out.shape).size());
   return out;
 }
 

@@ -35,6 +35,7 @@ struct Preparation {
   int sheets_imprinted = 0;           // open components joined to the rest by the general fuse
   int sheet_pieces_dropped = 0;       // pieces of them inside a body
   std::string fallback;               // why the union was not kept; empty when it was or was not needed
+  int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element
   int faces_before = 0, faces_after = 0;
 };
 

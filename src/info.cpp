@@ -38,7 +38,8 @@ void print_info(const Model& model, std::ostream& out) {
     else if (!prep.fallback.empty()) out << "not kept: " << prep.fallback;
     else out << "not needed";
     out << "; " << prep.duplicate_faces_removed << " duplicate and " << prep.internal_faces_removed
-        << " internal faces removed; " << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
+        << " internal faces removed; " << prep.faces_split_at_folds << " split at folds or parameter jumps; "
+        << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
   }
   if (i.entities_failed)
     out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";

@@ -1,0 +1,180 @@
+// Faces split along knot lines where their surface folds over within the
+// smallest element size or its parametrisation jumps (split_folds,
+// geometry/occt_model.h).
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepLib.hxx>
+#include <BRep_Tool.hxx>
+#include <Precision.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <ShapeBuild_ReShape.hxx>
+#include <ShapeExtend.hxx>
+#include <ShapeUpgrade_FaceDivide.hxx>
+#include <ShapeUpgrade_ShapeDivide.hxx>
+#include <ShapeUpgrade_SplitSurface.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_HSequenceOfReal.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <algorithm>
+#include <set>
+#include <vector>
+#include <cmath>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+constexpr int kSamples = 24;          // along each knot line
+constexpr double kFoldCos = 0.5;      // normals more than 60 deg apart across the band
+constexpr double kJump = 3.0;        // parametric speed ratio across a knot line
+constexpr int kRounds = 3;            // divisions tried, each without the faces the last one broke
+
+// Unit normal of s at (u, v); false where it is undefined.
+bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
+  gp_Pnt p;
+  gp_Vec du, dv;
+  s.D1(u, v, p, du, dv);
+  const gp_Vec c = du.Crossed(dv);
+  if (!(c.Magnitude() > 1e-300)) return false;
+  n = gp_Dir(c);
+  return true;
+}
+
+// True when, somewhere in [lo, hi] of the other parameter, the knot line
+// `along_u ? u = t : v = t` is a fold or a jump:
+//  - fold: the surface turns over within `band` (model units) on either side
+//    (a sharp or nearly sharp trailing edge, a crease), narrower than any
+//    element can follow;
+//  - jump: the parametric speed across the line changes by more than kJump
+//    from one side to the other, along most of the line. A front in uv sizes its triangles by the
+//    metric where it stands; across such a line the same uv step is several
+//    times longer in space, and triangles straddling it fold over.
+bool splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo, double hi, double t_lo,
+              double t_hi, double band) {
+  std::vector<double> ratios;
+  for (int j = 0; j <= kSamples; ++j) {
+    const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
+    double side[2], speed[2];
+    for (int k = 0; k < 2; ++k) {  // parameter step that covers `band` in space on each side
+      const double sign = k == 0 ? -1 : 1;
+      const double e = 1e-6 * (t_hi - t_lo);
+      gp_Pnt p;
+      gp_Vec du, dv;
+      if (along_u) s.D1(t + sign * e, w, p, du, dv);
+      else s.D1(w, t + sign * e, p, du, dv);
+      speed[k] = (along_u ? du : dv).Magnitude();
+      double step = speed[k] > 0 ? band / speed[k] : (t_hi - t_lo);
+      step = std::min(step, k == 0 ? t - t_lo : t_hi - t);
+      side[k] = t + sign * step;
+    }
+    const double slow = std::min(speed[0], speed[1]), fast = std::max(speed[0], speed[1]);
+    if (slow > 0) ratios.push_back(fast / slow);
+    gp_Dir n0, n1;
+    const bool ok = along_u ? normal_at(s, side[0], w, n0) && normal_at(s, side[1], w, n1)
+                            : normal_at(s, w, side[0], n0) && normal_at(s, w, side[1], n1);
+    if (ok && n0.Dot(n1) < kFoldCos) return true;
+  }
+  // A jump along most of the line (the median: a pole at one end of it has
+  // any ratio at all).
+  if (ratios.empty()) return false;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  return ratios[ratios.size() / 2] > kJump;
+}
+
+// Split values of one face's surface: its C0 knots (multiplicity at least the
+// degree) where the surface folds or its parametric speed jumps.
+class FoldSplitter : public ShapeUpgrade_SplitSurface {
+ public:
+  FoldSplitter(double band, const std::set<const Geom_Surface*>& whole) : band_(band), whole_(whole) {}
+
+  void Compute(const Standard_Boolean /*segment*/) override {
+    if (whole_.count(mySurface.get())) return;
+    Handle(Geom_Surface) base = mySurface;
+    if (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(base)) base = trimmed->BasisSurface();
+    const Handle(Geom_BSplineSurface) b = Handle(Geom_BSplineSurface)::DownCast(base);
+    if (b.IsNull()) return;
+    const double u0 = myUSplitValues->Value(1), u1 = myUSplitValues->Value(myUSplitValues->Length());
+    const double v0 = myVSplitValues->Value(1), v1 = myVSplitValues->Value(myVSplitValues->Length());
+    const double eps_u = 1e-9 * std::max(u1 - u0, 1e-300), eps_v = 1e-9 * std::max(v1 - v0, 1e-300);
+    for (int k = 2; k < b->NbUKnots(); ++k) {
+      const double t = b->UKnot(k);
+      if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u) continue;
+      if (splits_at(*b, true, t, v0, v1, u0, u1, band_)) insert(myUSplitValues, t);
+    }
+    for (int k = 2; k < b->NbVKnots(); ++k) {
+      const double t = b->VKnot(k);
+      if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v) continue;
+      if (splits_at(*b, false, t, u0, u1, v0, v1, band_)) insert(myVSplitValues, t);
+    }
+    if (myUSplitValues->Length() > 2 || myVSplitValues->Length() > 2)
+      myStatus |= ShapeExtend::EncodeStatus(ShapeExtend_DONE1);
+  }
+
+ private:
+  static void insert(const Handle(TColStd_HSequenceOfReal)& values, double t) {
+    int i = 1;
+    while (i <= values->Length() && values->Value(i) < t) ++i;
+    values->InsertBefore(i, t);
+  }
+  double band_;
+  const std::set<const Geom_Surface*>& whole_;  // surfaces not to divide
+};
+
+}  // namespace
+
+TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
+                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split) {
+  split = 0;
+  if (shape.IsNull() || !(band > 0)) return shape;
+  // Faces whose pieces come out invalid keep their surface whole; the rest
+  // are divided again without them (a few rounds at most).
+  std::set<const Geom_Surface*> whole;
+  for (int round = 0; round < kRounds; ++round) {
+    try {
+      Handle(ShapeUpgrade_FaceDivide) faces = new ShapeUpgrade_FaceDivide;
+      faces->SetSplitSurfaceTool(new FoldSplitter(band, whole));
+      ShapeUpgrade_ShapeDivide divide(shape);
+      divide.SetSplitFaceTool(faces);
+      divide.SetSurfaceSegmentMode(true);
+      if (!divide.Perform() || !divide.Status(ShapeExtend_DONE)) return shape;
+      const TopoDS_Shape result = divide.Result();
+      if (result.IsNull()) return shape;
+      // The divided edges keep their old flags: recompute them (and the
+      // tolerances they need) before judging the result.
+      BRepLib::SameParameter(result, Precision::Confusion(), true);
+      const Handle(ShapeBuild_ReShape) context = divide.GetContext();
+      bool valid = true;
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& f = TopoDS::Face(ex.Current());
+        const TopoDS_Shape now = context->Apply(f);
+        if (now.IsSame(f)) continue;
+        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
+          if (!BRepCheck_Analyzer(p.Current()).IsValid()) {
+            whole.insert(BRep_Tool::Surface(f).get());
+            valid = false;
+            break;
+          }
+      }
+      if (!valid) continue;
+      if (count_free_curves(result) > count_free_curves(shape) || !BRepCheck_Analyzer(result).IsValid()) return shape;
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& f = TopoDS::Face(ex.Current());
+        const TopoDS_Shape now = context->Apply(f);
+        if (now.IsSame(f)) continue;
+        int pieces = 0;
+        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next(), ++pieces) follow(f, TopoDS::Face(p.Current()));
+        split += pieces > 1;
+      }
+      return result;
+    } catch (const Standard_Failure&) {
+      split = 0;
+      return shape;
+    }
+  }
+  return shape;
+}
+
+}  // namespace sizemesh
