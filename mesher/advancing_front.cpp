@@ -32,8 +32,10 @@ struct Level {
 // Strategy 0 prefers well shaped triangles. When its front gets stuck the
 // face is meshed again: strategy 1 takes the valid candidate nearest the ideal
 // point (it folds less on coarse, strongly curved faces); strategies 2 and 3
-// repeat 0 and 1 but at last accept any triangle valid in uv (never leave a
-// hole; the optimiser repairs what it can and the quality report shows the rest).
+// repeat 0 and 1 but at last accept any triangle valid in uv that does not
+// turn against the surface at its centroid; a lenient run drops that last
+// test too (a few inverted triangles rather than a hole: the optimiser
+// repairs what it can and the quality report shows the rest).
 constexpr int kMaxTries = 6;
 constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
     {{0.45, 0.5, 0.5, 1.5, false},
@@ -64,8 +66,8 @@ constexpr Level kStrategies[kStrategyCount][kMaxTries] = {
 
 class Front {
  public:
-  Front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps)
-      : fm_(fm), fs_(fs), levels_(kStrategies[strategy]), max_steps_(max_steps) {}
+  Front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps, bool lenient)
+      : fm_(fm), fs_(fs), levels_(kStrategies[strategy]), max_steps_(max_steps), may_turn_(lenient) {}
 
   FrontResult run() {
     FrontResult r;
@@ -266,8 +268,10 @@ class Front {
       if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return -5;
     const double q = triangle_quality(pa, pb, pc);
     if (!(q > 1e-6)) return -6;
-    // And at the uv centroid, where a curved surface may turn away between corners.
-    if (lv.cos_min > -1) {
+    // And at the uv centroid, where a curved surface may turn away between
+    // corners: never against the normal there (the quality report's test for
+    // an inverted triangle), but in a lenient run's loosest levels.
+    if (lv.cos_min > -1 || !may_turn_) {
       Vec3 nc;
       try {
         nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
@@ -515,6 +519,7 @@ class Front {
   FaceSurface& fs_;
   const Level* levels_;
   long long max_steps_;  // tries at front edges, successful or not
+  bool may_turn_;        // lenient: the loosest levels may turn a triangle against the surface
   long long steps_ = 0;
   // Front edges and nodes looked at: a step's cost grows with the front near
   // it, so a front crowded into a small part of uv (a corrupt or badly
@@ -549,8 +554,8 @@ long long front_step_budget(double expected_triangles, int boundary_nodes) {
   return static_cast<long long>(std::min(4.0 * expected + 10.0 * n + 1000.0, 4e9));
 }
 
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps) {
-  Front front(fm, fs, std::clamp(strategy, 0, kStrategyCount - 1), max_steps);
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps, bool lenient) {
+  Front front(fm, fs, std::clamp(strategy, 0, kStrategyCount - 1), max_steps, lenient);
   return front.run();
 }
 

@@ -39,8 +39,10 @@ struct FrontResult {
 };
 
 // Strategies 0 .. kStrategyCount-1, from the best shapes to the most robust.
+// A lenient run lets the loosest levels of strategies 2 and 3 accept a
+// triangle turned against the surface at its centroid (never otherwise).
 constexpr int kStrategyCount = 4;
-FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps);
+FrontResult advancing_front(FaceMesh& fm, FaceSurface& fs, int strategy, long long max_steps, bool lenient);
 
 // The step budget of a face: a few times the triangles its size map asks for
 // (sizing/triangle_estimate.h), plus room for the boundary and a constant.

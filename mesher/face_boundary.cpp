@@ -181,4 +181,48 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
   return fm;
 }
 
+int steady_boundary_normals(FaceMesh& fm, const FaceSurface& fs) {
+  constexpr double kCurl = 0.7;      // cos 45 deg: the boundary's normal against the settled one
+  constexpr double kSettled = 0.94;  // cos 20 deg: the two inner normals against each other
+  constexpr double kDepth[2] = {0.75, 1.05};  // sample depths, in h
+  int changed = 0;
+  for (const std::vector<int>& loop : fm.loops) {
+    const int n = static_cast<int>(loop.size());
+    for (int i = 0; i < n; ++i) {
+      const int k = loop[i];
+      SurfaceSample& sk = fm.s[k];
+      if (fm.pole[k] || !(sk.n.squaredNorm() > 0) || !(sk.h > 0)) continue;
+      const Vec2 t = fm.uv[loop[(i + 1) % n]] - fm.uv[loop[(i + n - 1) % n]];
+      Vec2 d(-t.y(), t.x());  // the domain lies on the loop's left
+      if (!(d.norm() > 0)) continue;
+      d /= d.norm();
+      const double speed = (sk.du * d.x() + sk.dv * d.y()).norm();
+      if (!(speed > 0)) continue;
+      // Normals at the two depths in space: the uv step from the boundary's
+      // speed, halved while it lands too far.
+      Vec3 inner[2];
+      bool found = true;
+      for (int s = 0; s < 2 && found; ++s) {
+        const double want = kDepth[s] * sk.h;
+        double step = want / speed;
+        found = false;
+        for (int tries = 0; tries < 8 && std::isfinite(step) && !found; ++tries, step *= 0.5) {
+          try {
+            const SurfaceSample in = fs.eval_shape(fm.uv[k] + step * d);
+            if ((in.p - sk.p).norm() > 1.5 * want || !(in.n.squaredNorm() > 0)) continue;
+            inner[s] = in.n;
+            found = true;
+          } catch (const EvaluationError&) {
+          }
+        }
+      }
+      if (found && inner[0].dot(inner[1]) > kSettled && inner[0].dot(sk.n) < kCurl) {
+        sk.n = inner[0];
+        ++changed;
+      }
+    }
+  }
+  return changed;
+}
+
 }  // namespace sizemesh

@@ -18,4 +18,13 @@ namespace sizemesh {
 
 FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs);
 
+// Boundary nodes where the surface curls within a sliver far narrower than
+// the mesh (a rounded edge of radius well under h at the patch end) take the
+// normal 0.75 h inside the face, so the front's and the optimiser's normal
+// tests judge triangles by the surface they cover: where the normals 0.75 h
+// and 1.05 h inside agree (within 20 degrees) but the boundary's is 45
+// degrees or more off. A surface that keeps turning (a fillet or a cone's
+// tip narrower than h) is left alone. Returns the number of nodes changed.
+int steady_boundary_normals(FaceMesh& fm, const FaceSurface& fs);
+
 }  // namespace sizemesh

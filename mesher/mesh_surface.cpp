@@ -35,6 +35,7 @@ struct FaceResult {
   int strategy = 0;  // front strategy that closed the face
   long long front_steps = 0;
   bool filled = false;  // the front's leftover was closed by ear clipping
+  bool lenient = false; // the strict run left a hole: meshed by the lenient one
   double seconds_front = 0, seconds_optimise = 0;
 };
 
@@ -45,26 +46,49 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   FaceSurface fs(g, h, face);
   try {
     const auto t0 = Clock::now();
-    const FaceMesh boundary = face_boundary(g, cm, fs);
+    const FaceMesh raw = face_boundary(g, cm, fs);
+    FaceMesh steady = raw;
+    const bool curled = steady_boundary_normals(steady, fs) > 0;
     const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;
-    const long long budget = front_step_budget(expected, boundary.num_nodes());
+    const long long budget = front_step_budget(expected, raw.num_nodes());
+    // Strict runs first: no triangle turned against the surface, leftovers
+    // closed only by ears that face the surface; with the boundary normals
+    // steadied where the surface curls, then (if that changed any) without.
+    // If both leave a hole, a lenient run of the strategies whose loosest
+    // levels it changes (2 and 3), its leftovers closed by facing ears where
+    // they can be: a few inverted triangles rather than a hole.
+    struct Attempt {
+      const FaceMesh* boundary;
+      bool lenient;
+    };
+    std::vector<Attempt> attempts = {{&steady, false}};
+    if (curled) attempts.push_back({&raw, false});
+    attempts.push_back({&steady, true});
     FrontResult fr;
-    for (int strategy = 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
-      r.mesh = boundary;
-      fr = advancing_front(r.mesh, fs, strategy, budget);
-      r.front_steps += fr.steps;
-      r.fronts_3d += fr.fronts_3d;
-      r.strategy = strategy;
-      // A few edges the front could not advance from: close them in place.
-      if (!fr.ok && fill_front(r.mesh, fr.open_edges, false, kSmallLeftover)) {
+    auto fill = [&](bool lenient, int max_edges) {
+      return fill_front(r.mesh, fr.open_edges, true, max_edges) ||
+             (lenient && fill_front(r.mesh, fr.open_edges, false, max_edges));
+    };
+    for (const Attempt& a : attempts) {
+      for (int strategy = a.lenient ? 2 : 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
+        r.mesh = *a.boundary;
+        fr = advancing_front(r.mesh, fs, strategy, budget, a.lenient);
+        r.front_steps += fr.steps;
+        r.fronts_3d += fr.fronts_3d;
+        r.strategy = strategy;
+        // A few edges the front could not advance from: close them in place.
+        if (!fr.ok && fill(a.lenient, kSmallLeftover)) {
+          fr.ok = true;
+          r.filled = true;
+        }
+      }
+      // Before a hole: close the last strategy's leftover with ears.
+      if (!fr.ok && fill(a.lenient, kLargeLeftover)) {
         fr.ok = true;
         r.filled = true;
       }
-    }
-    // Last resort before a hole: close the last strategy's leftover with any ears valid in uv.
-    if (!fr.ok && fill_front(r.mesh, fr.open_edges, false, kLargeLeftover)) {
-      fr.ok = true;
-      r.filled = true;
+      r.lenient = a.lenient;
+      if (fr.ok) break;
     }
     r.seconds_front = seconds_since(t0);
     if (!fr.ok) {
@@ -123,6 +147,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
     out.stats.front_steps += r.front_steps;
     out.stats.faces_retried += r.strategy > 0;
     out.stats.faces_relaxed += r.strategy >= 2;
+    out.stats.faces_lenient += r.lenient;
     out.stats.faces_filled += r.filled;
     out.stats.seconds_front += r.seconds_front;
     out.stats.seconds_optimise += r.seconds_optimise;

@@ -12,9 +12,10 @@ constexpr double kCosMin = 0.5;    // triangle normal against the surface normal
 constexpr double kSwapBelow = 0.8;  // only triangles worse than this look for a better diagonal
 
 // Shape in space of (a, b, c) at the given corner samples; -1 when the triangle
-// is folded in uv or turned away from the surface.
+// is folded in uv or turned away from the surface at a corner or at its uv
+// centroid (the quality report's test for an inverted triangle).
 double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample& sa, const SurfaceSample& sb,
-             const SurfaceSample& sc) {
+             const SurfaceSample& sc, const FaceSurface& fs) {
   const double o = orient(ua, ub, uc);
   const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
   if (!(o > 1e-10 * scale)) return -1;
@@ -24,11 +25,17 @@ double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample
   const SurfaceSample* corners[3] = {&sa, &sb, &sc};
   for (const SurfaceSample* s : corners)  // normals are zero on poles
     if (s->n.squaredNorm() > 0 && nt.dot(s->n) < kCosMin * lt) return -1;
+  try {
+    const Vec3 nc = fs.eval_shape((ua + ub + uc) / 3.0).n;
+    if (nc.squaredNorm() > 0 && !(nt.dot(nc) > 0)) return -1;
+  } catch (const EvaluationError&) {
+    return -1;
+  }
   return triangle_quality(sa.p, sb.p, sc.p);
 }
 
-double shape(const FaceMesh& fm, const std::array<int, 3>& t) {
-  return shape(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]], fm.s[t[0]], fm.s[t[1]], fm.s[t[2]]);
+double shape(const FaceMesh& fm, const FaceSurface& fs, const std::array<int, 3>& t) {
+  return shape(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]], fm.s[t[0]], fm.s[t[1]], fm.s[t[2]], fs);
 }
 
 // Triangle neighbours: nbr[t][k] is the triangle across edge (t[k], t[k+1]), -1 on the boundary.
@@ -64,11 +71,11 @@ void repoint(std::vector<std::array<int, 3>>& nbr, int t, int from, int to) {
 }
 
 // One sweep of diagonal swaps that raise the worse shape of the two triangles.
-int swap_sweep(FaceMesh& fm, std::vector<std::array<int, 3>>& nbr) {
+int swap_sweep(FaceMesh& fm, const FaceSurface& fs, std::vector<std::array<int, 3>>& nbr) {
   int swaps = 0;
   const int n = static_cast<int>(fm.tris.size());
   std::vector<double> q(n);
-  for (int t = 0; t < n; ++t) q[t] = fm.pole_triangle(fm.tris[t]) ? 2.0 : shape(fm, fm.tris[t]);
+  for (int t = 0; t < n; ++t) q[t] = fm.pole_triangle(fm.tris[t]) ? 2.0 : shape(fm, fs, fm.tris[t]);
   for (int t1 = 0; t1 < n; ++t1) {
     if (fm.pole_triangle(fm.tris[t1]) || q[t1] > kSwapBelow) continue;
     for (int k = 0; k < 3; ++k) {
@@ -84,7 +91,7 @@ int swap_sweep(FaceMesh& fm, std::vector<std::array<int, 3>>& nbr) {
       const std::array<int, 3> n1{c, a, d}, n2{d, b, c};
       if (fm.pole_triangle(n1) || fm.pole_triangle(n2)) continue;
       const double q_old = std::min(q[t1], q[t2]);
-      const double q1 = shape(fm, n1), q2 = shape(fm, n2);
+      const double q1 = shape(fm, fs, n1), q2 = shape(fm, fs, n2);
       if (!(std::min(q1, q2) > q_old + 1e-6)) continue;
       q[t1] = q1;
       q[t2] = q2;
@@ -131,7 +138,7 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
           target += fm.s[v].p;
           ++cnt;
         }
-      if (!fm.pole_triangle(tr)) old_q = std::min(old_q, shape(fm, tr));
+      if (!fm.pole_triangle(tr)) old_q = std::min(old_q, shape(fm, fs, tr));
     }
     target /= cnt;
     const SurfaceSample& si = fm.s[i];
@@ -165,7 +172,7 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
           ok = orient(u[0], u[1], u[2]) > 0;
           continue;
         }
-        const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2]);
+        const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
         if (q < 0) ok = false;
         new_q = std::min(new_q, q);
       }
@@ -185,11 +192,11 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes) {
   if (passes <= 0 || fm.tris.empty()) return;
   std::vector<std::array<int, 3>> nbr = neighbours(fm);
   for (int p = 0; p < passes; ++p) {
-    for (int k = 0; k < 4 && swap_sweep(fm, nbr) > 0; ++k) {
+    for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
     }
     smooth_sweep(fm, fs);
   }
-  for (int k = 0; k < 4 && swap_sweep(fm, nbr) > 0; ++k) {
+  for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
   }
 }
 

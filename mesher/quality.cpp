@@ -60,7 +60,15 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 // sits at the corner, or the triangle lies in the corner's wedge, every node
 // on the two curves that meet there: where the wedge is narrower than its
 // boundary segments, a triangle spanning it cannot have larger angles.
-void count_forced_slivers(const SurfaceMesh& m, MeshQuality& q) {
+//
+// And in a face narrower than the elements: every node on the face's
+// boundary, and the shortest edge spans the face (its ends are not on one
+// curve) at under tan(12 deg) of the wanted size. The boundary is split at
+// about the wanted size, so such a triangle has a side of about h and a
+// height under h tan(12 deg): no triangle spanning that face can do better
+// unless the size map goes below h_min.
+void count_forced_slivers(const SurfaceMesh& m, const std::vector<TriangleMeasure>& per, MeshQuality& q) {
+  const double kNarrow = std::tan(12.0 * 3.14159265358979323846 / 180.0);
   auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
   std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
   for (size_t t = 0; t < m.tris.size(); ++t) {
@@ -95,6 +103,18 @@ void count_forced_slivers(const SurfaceMesh& m, MeshQuality& q) {
       for (int node : m.tris[t]) {
         const int dim = m.node_dim[node];
         forced = forced && dim <= 1 && w->second.count({dim, dim == 0 ? node : m.node_entity[node]});
+      }
+    }
+    if (!forced) {
+      const auto& tr = m.tris[t];
+      const auto& ratio = per[t].edge_ratio;
+      const int e = static_cast<int>(std::min_element(ratio.begin(), ratio.end()) - ratio.begin());
+      const int a = tr[e], b = tr[(e + 1) % 3];
+      const bool on_boundary = m.node_dim[tr[0]] <= 1 && m.node_dim[tr[1]] <= 1 && m.node_dim[tr[2]] <= 1;
+      const bool along_curve = m.node_dim[a] == 1 && m.node_dim[b] == 1 && m.node_entity[a] == m.node_entity[b];
+      if (on_boundary && !along_curve && ratio[e] < kNarrow) {
+        forced = true;
+        ++q.narrow_below_12;
       }
     }
     q.forced_below_12 += forced;
@@ -151,7 +171,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
-  count_forced_slivers(m, q);
+  count_forced_slivers(m, per, q);
   // Edge uses, sorted by undirected edge: (min, max) << 1 | reversed, then the
   // use (triangle, side) so each group is one edge with its directions.
   std::vector<std::pair<uint64_t, uint32_t>> uses(3 * nt);

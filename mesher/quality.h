@@ -17,7 +17,9 @@
 //   B-rep point where the face's own corner (the angle sum of its triangles
 //   there) is under 12 degrees, a triangle whose smallest angle sits at that
 //   point, or whose nodes all lie on the two curves meeting there (spanning
-//   the corner's narrow wedge), is forced by the CAD.
+//   the corner's narrow wedge), is forced by the CAD; so is a triangle with
+//   every node on its face's boundary whose shortest edge spans the face at
+//   under h tan(12 deg) (a face narrower than the elements).
 //   Self-intersecting triangle pairs (mesher/self_intersection.h), and of those
 //   the local ones: within one face or between faces that share a curve.
 #pragma once
@@ -36,7 +38,8 @@ struct MeshQuality {
   std::vector<double> min_angle;          // per triangle (degrees)
   std::array<int, 10> histogram{};        // of min_angle, 6-degree bins
   int below_12 = 0, below_24 = 0;
-  int forced_below_12 = 0;                // at a CAD corner itself under 12 degrees
+  int forced_below_12 = 0;                // at a CAD corner itself under 12 degrees, or across a narrow face
+  int narrow_below_12 = 0;                // of those, spanning a face narrower than h tan(12 deg)
   int avoidable_below_12 = 0;             // below_12 - forced_below_12
   double worst_angle = 180;
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;

@@ -32,6 +32,7 @@ struct MeshStats {
   long long front_steps = 0;    // tries at front edges, over every face and strategy
   int faces_retried = 0;        // faces whose front got stuck and were meshed again
   int faces_relaxed = 0;        // of those, faces that needed the last-resort strategies
+  int faces_lenient = 0;        // of those, faces only a lenient run closed (may hold inverted triangles)
   int faces_filled = 0;         // faces whose front's leftover was closed by ear clipping
 };
 

@@ -37,6 +37,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"duplicate_faces_removed", prep.duplicate_faces_removed},
                       {"internal_faces_removed", prep.internal_faces_removed},
                       {"components_repaired", prep.components_repaired},
+                      {"faces_split_at_folds", prep.faces_split_at_folds},
                       {"faces_before", prep.faces_before},
                       {"faces_after", prep.faces_after}};
   j["background"] = {{"triangles", r.background_triangles},
@@ -69,6 +70,7 @@ nlohmann::json report_json(const RunReport& r) {
                  {"bad_below_12deg", q.below_12},
                  {"bad_share", q.below_12 / n},
                  {"forced_below_12deg", q.forced_below_12},
+                 {"narrow_face_below_12deg", q.narrow_below_12},
                  {"avoidable_below_12deg", q.avoidable_below_12},
                  {"low_quality_below_24deg", q.below_24},
                  {"low_quality_share", q.below_24 / n},
@@ -93,6 +95,7 @@ nlohmann::json report_json(const RunReport& r) {
                    {"front_steps_per_triangle", st.front_steps / n},
                    {"faces_retried", st.faces_retried},
                    {"faces_relaxed", st.faces_relaxed},
+                   {"faces_lenient", st.faces_lenient},
                    {"faces_filled", st.faces_filled}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
@@ -112,7 +115,9 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
   const double n = std::max(1, q.triangles);
   out << "mesh: " << q.triangles << " triangles, " << q.nodes << " nodes\n"
       << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
-      << " (" << 100.0 * q.below_12 / n << "%; " << q.forced_below_12 << " forced by CAD corners), below 24 deg: " << q.below_24 << " (" << 100.0 * q.below_24 / n
+      << " (" << 100.0 * q.below_12 / n << "%; " << q.forced_below_12 - q.narrow_below_12 << " forced by CAD corners, "
+      << q.narrow_below_12 << " by faces narrower than the elements), below 24 deg: " << q.below_24 << " ("
+      << 100.0 * q.below_24 / n
       << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
       << "sized at h_min: " << 100.0 * r.at_h_min_share << "% of the triangles, " << 100.0 * r.at_h_min_area_share
       << "% of the area\n"

@@ -76,7 +76,7 @@ TEST_CASE("every front strategy stays inside the face where a front once ran awa
   bool closed = false;
   for (int strategy = 0; strategy < kStrategyCount; ++strategy) {
     FaceMesh fm = boundary;
-    const FrontResult r = advancing_front(fm, fs, strategy, budget);
+    const FrontResult r = advancing_front(fm, fs, strategy, budget, false);
     INFO("strategy " << strategy << ": " << fm.tris.size() << " triangles, " << r.reason);
     CHECK(r.steps <= budget);
     const double covered = triangles_area(fm);
@@ -97,7 +97,7 @@ TEST_CASE("a spent step budget stops the front with a reason, never more triangl
   const CurveMesh cm = discretise_curves(model, h);
   FaceSurface fs(model, h, 1);
   FaceMesh fm = face_boundary(model, cm, fs);
-  const FrontResult r = advancing_front(fm, fs, 0, 100);
+  const FrontResult r = advancing_front(fm, fs, 0, 100, false);
   CHECK_FALSE(r.ok);
   CHECK(r.steps == 101);  // the step that finds the budget spent is not taken
   CHECK(fm.tris.size() <= 100);
@@ -105,7 +105,7 @@ TEST_CASE("a spent step budget stops the front with a reason, never more triangl
   CHECK_FALSE(r.open_edges.empty());
   // With its budget the same face closes.
   FaceMesh full = face_boundary(model, cm, fs);
-  CHECK(advancing_front(full, fs, 0, front_step_budget(4 * 3.14159 / (0.433 * 0.05 * 0.05), full.num_nodes())).ok);
+  CHECK(advancing_front(full, fs, 0, front_step_budget(4 * 3.14159 / (0.433 * 0.05 * 0.05), full.num_nodes()), false).ok);
 }
 
 TEST_CASE("ear clipping closes a front's leftover loop exactly, and refuses a hole", "[front]") {
