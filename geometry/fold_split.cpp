@@ -159,7 +159,10 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
           }
       }
       if (!valid) continue;
-      if (count_free_curves(result) > count_free_curves(shape) || !BRepCheck_Analyzer(result).IsValid()) return shape;
+      // A closed shape stays closed (an open one gains free curves where its
+      // free boundary is divided).
+      if ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid())
+        return shape;
       for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& f = TopoDS::Face(ex.Current());
         const TopoDS_Shape now = context->Apply(f);

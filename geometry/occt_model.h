@@ -90,7 +90,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
 // (a front in uv folds triangles that straddle such a line).
 // `follow(face, piece)` is called for every face replaced; `split` counts
 // the faces cut. Returns `shape` itself when nothing is split or the result
-// would be invalid or less closed.
+// would be invalid, or open where `shape` was closed.
 TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
                          const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split);
 

@@ -5,6 +5,10 @@
 #include <catch2/catch.hpp>
 
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -376,4 +380,77 @@ TEST_CASE("the shared OpenVSP aircraft close into one surface", "[models]") {
       CHECK(total_area(model) < total_area(raw));
     }
   }
+}
+
+namespace {
+
+// A unit-wide strip in the plane y = 0..1 made of two cubic Bezier spans in
+// u joined at a triple knot u = 1 (C0 in its parametrisation): the first span
+// runs from x = 0 to 1 along +x; the second continues to `end` from there,
+// reached with `speed` times the first span's parametric speed.
+TopoDS_Shape two_span_strip(const gp_Vec& second, double speed) {
+  TColgp_Array2OfPnt poles(1, 7, 1, 2);
+  const gp_Vec first(1, 0, 0);
+  for (int j = 1; j <= 2; ++j) {
+    const gp_Vec y(0, j - 1, 0);
+    for (int i = 0; i <= 3; ++i) poles(i + 1, j) = gp_Pnt(0, 0, 0).Translated(first * (i / 3.0) + y);
+    for (int i = 1; i <= 3; ++i) poles(i + 4, j) = gp_Pnt(1, 0, 0).Translated(second * (speed * i / 3.0) + y);
+  }
+  TColStd_Array1OfReal uk(1, 3), vk(1, 2);
+  TColStd_Array1OfInteger um(1, 3), vm(1, 2);
+  uk(1) = 0, uk(2) = 1, uk(3) = 2;
+  um(1) = 4, um(2) = 3, um(3) = 4;
+  vk(1) = 0, vk(2) = 1;
+  vm(1) = 2, vm(2) = 2;
+  Handle(Geom_BSplineSurface) s = new Geom_BSplineSurface(poles, uk, vk, um, vm, 3, 1);
+  return BRepBuilderAPI_MakeFace(s, 1e-7).Shape();
+}
+
+}  // namespace
+
+TEST_CASE("faces split along knot lines where the surface folds or its parametrisation jumps", "[prepare]") {
+  struct Case {
+    const char* name;
+    gp_Vec second;
+    double speed;
+    int faces;
+  };
+  const double c = std::cos(2 * kPi / 3), s = std::sin(2 * kPi / 3);
+  for (const Case& k : {Case{"smooth: same direction, same speed", gp_Vec(1, 0, 0), 1.0, 1},
+                        Case{"jump: same direction, five times the speed", gp_Vec(1, 0, 0), 5.0, 2},
+                        Case{"crease: turned by 120 degrees", gp_Vec(c, 0, s), 1.0, 2},
+                        Case{"mild turn: 10 degrees", gp_Vec(std::cos(0.17), 0, std::sin(0.17)), 1.0, 1}}) {
+    SECTION(k.name) {
+      const Model model = model_from_shape(two_span_strip(k.second, k.speed));
+      REQUIRE(model.num_faces() == k.faces);
+      CHECK(model.info().preparation.faces_split_at_folds == (k.faces > 1 ? 1 : 0));
+      const double length = 1 + k.second.Magnitude() * k.speed;
+      double area = 0;
+      for (int f = 1; f <= model.num_faces(); ++f) {
+        CHECK(model.source_face(f) == 1);
+        area += model.face_area(f);
+      }
+      CHECK(area == Approx(length).epsilon(1e-6));
+      // The knot line is a curve: the mesh has nodes on it, at x = 1 in the
+      // first span's end plane, and no triangle crosses it.
+      const UniformSize h(0.1);
+      const SurfaceMesh m = mesh_surface(model, h);
+      const MeshQuality q = mesh_quality(m, model, h);
+      REQUIRE(m.failures.empty());
+      CHECK(q.inverted == 0);
+      CHECK(q.below_12 == 0);
+      if (k.faces > 1) {
+        int on_line = 0;
+        for (size_t i = 0; i < m.xyz.size(); ++i)
+          on_line += m.node_dim[i] <= 1 && std::abs(m.xyz[i].x() - 1) < 1e-9 && std::abs(m.xyz[i].z()) < 1e-9;
+        CHECK(on_line >= 11);  // the line y = 0..1 at h = 0.1, ends included
+      }
+    }
+  }
+  // The manta's pods fold over at knots and its body patches change speed
+  // across them: the preparation splits them, and the split pieces keep
+  // their source face ids.
+  const Model manta = load_model(test::model_path("manta2_openvsp.stp"));
+  CHECK(manta.info().preparation.faces_split_at_folds > 0);
+  for (int f = 1; f <= manta.num_faces(); ++f) CHECK(manta.source_face(f) >= 1);
 }
