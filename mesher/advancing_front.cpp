@@ -106,7 +106,10 @@ class Front {
                    std::to_string(alive_) + " front edges left)";
         return fail(r);
       }
-      if (work_ > kWorkPerStep * max_steps_) {
+      // Work: within the face's budget, and (past a warm-up) within
+      // kWorkPerStep per step on average: a front crowding into a corner of
+      // its domain looks at ten times that and stops early.
+      if (work_ > kWorkPerStep * std::min(max_steps_, std::max(steps_, kWorkWarmup))) {
         r.reason = "the advancing front spent its work budget after " + std::to_string(steps_) + " steps (" +
                    std::to_string(work_) + " front edges and nodes looked at, " + std::to_string(alive_) +
                    " front edges left)";
@@ -527,6 +530,7 @@ class Front {
   // Sound faces look at up to ~1700 per step (impeller), against 2000 per
   // budgeted step, and the step budget is 4 times the estimate.
   static constexpr long long kWorkPerStep = 2000;
+  static constexpr long long kWorkWarmup = 5000;  // steps before the average is held to kWorkPerStep
   long long work_ = 0;
   std::vector<FrontEdge> edges_;
   std::vector<unsigned> stamp_, node_stamp_;
