@@ -78,7 +78,10 @@ BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions
 // middle of its uv. Every triangle touching a split edge is re-triangulated
 // (one split side: 2 triangles, two: 3, three: 4), all classification is kept,
 // and the global triangles, edges and uses are rebuilt. Edges of triangles
-// collapsed onto a pole are left alone. Returns the number of edges split.
+// collapsed onto a pole are left alone. Returns the number of edges split,
+// which is the number of vertices added: an edge inside faces counts once per
+// face holding it (two faces may each join the same two boundary vertices by
+// a chord; each gets its own midpoint on its own surface).
 int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& edges);
 
 // --- building blocks shared by the builders above ---

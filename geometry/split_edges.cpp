@@ -108,13 +108,15 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
   };
   std::vector<int> curve_mid(ne, -1);
   int split = 0;
+  bool any = false;
   for (int e = 0; e < ne; ++e) {
     if (!marked[e]) continue;
+    any = true;
+    if (!bg.edge_curve[e]) continue;  // counted per face below
     ++split;
-    if (bg.edge_curve[e])
-      curve_mid[e] = add_vertex(g.eval_curve(bg.edge_curve[e], mid_t[e]), 1, bg.edge_curve[e], mid_t[e]);
+    curve_mid[e] = add_vertex(g.eval_curve(bg.edge_curve[e], mid_t[e]), 1, bg.edge_curve[e], mid_t[e]);
   }
-  if (!split) return 0;
+  if (!any) return 0;
 
   for (FacePatch& patch : bg.patches) {
     std::unordered_map<uint64_t, int> local_mid;  // local vertex pair -> new local vertex
@@ -134,6 +136,7 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
             patch.uv.push_back(pcurve_uv(g, bg.edge_curve[e], patch.face, mid_t[e], chord_mid));
             patch.vertex.push_back(curve_mid[e]);
           } else {
+            ++split;
             patch.uv.push_back(chord_mid);
             patch.vertex.push_back(
                 add_vertex(g.eval_face(patch.face, chord_mid).p, 2, patch.face, std::numeric_limits<double>::quiet_NaN()));
