@@ -25,12 +25,12 @@ const char* gap_side_name(GapSide s);
 GapSide gap_side_from(const std::string& name);  // throws Error on an unknown name
 
 struct SizingParams {
-  double phi_c_deg = 5.0;   // curvature: central angle per element (degrees)
+  double phi_c_deg = 15.0;  // curvature: central angle per element (degrees)
   double mu_d = 2.0;        // proximity: elements across a proximity distance
   double beta = 1.2;        // gradation: growth factor per element
   double h_min = 0;         // 0: h_min_rel * bounding-box diagonal
   double h_max = 0;         // 0: h_max_rel * bounding-box diagonal
-  double h_min_rel = 1e-3;
+  double h_min_rel = 5e-4;
   double h_max_rel = 0.05;
   double deviation = 0;     // curvature: largest chord height of an element edge (model units); 0: none
   bool proximity = true;        // all proximity sizes: face width, curve length and gaps (paper 3.2.2)

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(positive);
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
-  auto* sizing = "sizing (paper 3.4; h_min/h_max default to 1e-3 and 0.05 of the bounding-box diagonal)";
+  auto* sizing = "sizing (paper 3.4; h_min/h_max default to 5e-4 and 0.05 of the bounding-box diagonal)";
   for (const SizingOption& opt : sizing_options()) {
     CLI::Option* cli = opt.on ? app.add_flag("!" + opt.flag, o.sizing.*opt.on, opt.help)
                               : app.add_option(opt.flag, o.sizing.*opt.number, opt.help);

@@ -106,7 +106,8 @@ void require_clean_run(const std::string& input, const std::string& options, dou
   const std::string out = scratch("out.vtu");
   fs::remove(out);
   const auto t0 = std::chrono::steady_clock::now();
-  const auto r = sizemesh::test::run_sizemesh("-q " + options + " -o " + out + " '" + input + "'", 20);
+  const auto r = sizemesh::test::run_sizemesh("-q " + options + " -o " + out + " '" + input + "'",
+                                              static_cast<int>(max_seconds) + 10);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   INFO(input << ": exit " << r.status << " after " << seconds << " s; stderr: " << r.err);
   CHECK(seconds < max_seconds);
@@ -172,9 +173,10 @@ TEST_CASE("an OpenVSP aircraft with 200 bytes overwritten ends in time", "[fuzz]
   // The full pipeline (union of the parts that survive, sizing, meshing) on
   // broken geometry: faces whose front crowds into a corner of their uv
   // domain are stopped by the front's work budget and named as failed while
-  // the rest is written. Alone each run takes 2-6 s (seed 8: 4.4 s in the
-  // general fuse of its 13 loose sheets, which then fails); the bound leaves
-  // room for the other tests running beside it.
+  // the rest is written. Alone each run takes 5-11 s (seed 8: 4.5 s in the
+  // general fuse of its 13 loose sheets, which then fails; seed 7: 460k
+  // triangles, 40% of them at h_min, from its damaged surfaces); the bound
+  // leaves room for the other tests running beside it.
   const std::string text = sizemesh::test::slurp(sizemesh::test::model_path("manta2_openvsp.stp"));
   REQUIRE(text.size() > 100000);
   for (unsigned seed : {7u, 8u, 9u}) {
@@ -185,7 +187,7 @@ TEST_CASE("an OpenVSP aircraft with 200 bytes overwritten ends in time", "[fuzz]
           static_cast<char>(std::uniform_int_distribution<int>(32, 126)(rng));
     const std::string path = scratch("manta_overwritten" + std::to_string(seed) + ".stp");
     write_file(path, t);
-    require_clean_run(path, "--threads 2", 20);
+    require_clean_run(path, "--threads 2", 30);
     fs::remove(path);
   }
 }
