@@ -14,6 +14,13 @@
 #include <cstring>
 #include <unistd.h>
 
+#include "geometry/background_mesh.h"
+#include "geometry/model.h"
+#include "mesher/mesh_surface.h"
+#include "sizing/params.h"
+#include "sizing/refine_background.h"
+#include "sizing/size_query.h"
+#include "sizing/smooth.h"
 #include "tests/cli_runner.h"
 #include "tests/exact_intersections.h"
 #include "tests/test_models.h"
@@ -71,6 +78,9 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
       INFO(m.dump());
       CHECK(m["failed_faces"].empty());
       CHECK(m["inverted_triangles"].get<double>() <= sm.max_inverted_share * m["triangles"].get<double>());
+      // The geometry, not h_min, sets the mesh: at most 10% of the triangles
+      // have a target size within 5% of h_min.
+      CHECK(m["share_at_h_min"].get<double>() <= 0.10);
       CHECK(m["zero_area_triangles"] == 0);
       // Nodes inside faces lie on their surface.
       CHECK(m["max_inner_node_distance"].get<double>() <= 1e-9 * j["model"]["diagonal"].get<double>());
@@ -182,4 +192,29 @@ TEST_CASE("mesh formats: Gmsh 4.1 with one physical group per face, binary STL, 
   CHECK(bad.status == 1);
   CHECK(bad.err.find("unknown mesh format") != std::string::npos);
   for (const auto& path : {msh, stl, vtu}) fs::remove(path);
+}
+
+TEST_CASE("default sizes mesh the ONERA M6 in at most 60k triangles within 2e-4 of the diagonal of the CAD") {
+  // The library's pipeline at default settings; each triangle's centroid is
+  // compared with the surface point at its uv centroid, an upper bound on its
+  // distance to the CAD.
+  const Model model = load_model(test::model_path("onera_m6_wing.stp"));
+  const double diag = model.info().diagonal();
+  BackgroundMesh bg = build_background_mesh(model);
+  SizeMap h = refine_background(model, bg, SizingParams{}, diag);
+  smooth(bg, h);
+  const SizeQuery query = size_query_for(model, bg, h.h);
+  const SurfaceMesh m = mesh_surface(model, query);
+  REQUIRE(m.failures.empty());
+  CHECK(m.tris.size() <= 60000);
+  CHECK(m.tris.size() >= 30000);  // and the wing is still resolved
+  double worst = 0;
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    const auto& tr = m.tris[t];
+    const auto& uv = m.tri_uv[t];
+    const Vec3 c = (m.xyz[tr[0]] + m.xyz[tr[1]] + m.xyz[tr[2]]) / 3.0;
+    worst = std::max(worst, (model.eval_face(m.tri_face[t], (uv[0] + uv[1] + uv[2]) / 3.0).p - c).norm());
+  }
+  INFO("largest centroid distance " << worst / diag << " of the diagonal");
+  CHECK(worst <= 2e-4 * diag);
 }
