@@ -38,7 +38,7 @@ bool chain_loops(const std::vector<std::array<int, 2>>& edges, std::vector<std::
 
 class EarClipper {
  public:
-  EarClipper(const FaceMesh& fm, bool strict) : fm_(fm), strict_(strict) {
+  EarClipper(const FaceMesh& fm, const FaceSurface& fs, bool strict) : fm_(fm), fs_(fs), strict_(strict) {
     for (const auto& t : fm.tris)
       for (int k = 0; k < 3; ++k) edges_.insert(key(t[k], t[(k + 1) % 3]));
   }
@@ -87,12 +87,23 @@ class EarClipper {
       const Vec2& p = fm_.uv[k];
       if (orient(ua, ub, p) >= 0 && orient(ub, uc, p) >= 0 && orient(uc, ua, p) >= 0) return -1;
     }
-    const Vec3 &pa = fm_.s[a].p, &pb = fm_.s[b].p, &pc = fm_.s[c].p;
-    const Vec3 nt = (pb - pa).cross(pc - pa);
-    if (strict_)
-      for (int k : {a, b, c})
-        if (fm_.s[k].n.squaredNorm() > 0 && !(nt.dot(fm_.s[k].n) > 0)) return -1;
-    return triangle_quality(pa, pb, pc);
+    if (strict_ && turned(ua, ub, uc, fm_.s[a], fm_.s[b], fm_.s[c])) return -1;
+    return triangle_quality(fm_.s[a].p, fm_.s[b].p, fm_.s[c].p);
+  }
+
+  // Against the surface normal at a corner or at the uv centroid (the
+  // quality report's inverted triangle).
+  bool turned(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample& sa, const SurfaceSample& sb,
+              const SurfaceSample& sc) const {
+    const Vec3 nt = (sb.p - sa.p).cross(sc.p - sa.p);
+    for (const SurfaceSample* s : {&sa, &sb, &sc})
+      if (s->n.squaredNorm() > 0 && !(nt.dot(s->n) > 0)) return true;
+    try {
+      const Vec3 nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
+      return nc.squaredNorm() > 0 && !(nt.dot(nc) > 0);
+    } catch (const EvaluationError&) {
+      return true;
+    }
   }
 
   // A node's identity in space: its shared id on the boundary (seam copies agree), else its own.
@@ -100,18 +111,19 @@ class EarClipper {
   uint64_t key(int a, int b) const { return edge_key(identity(a), identity(b)); }
 
   const FaceMesh& fm_;
+  const FaceSurface& fs_;
   bool strict_;
   std::unordered_set<uint64_t> edges_;  // mesh edges in space (identity pairs)
 };
 
 }  // namespace
 
-bool fill_front(FaceMesh& fm, const std::vector<std::array<int, 2>>& open_edges,
+bool fill_front(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges,
                 bool strict, int max_edges) {
   if (open_edges.empty() || static_cast<int>(open_edges.size()) > max_edges) return false;
   std::vector<std::vector<int>> loops;
   if (!chain_loops(open_edges, loops)) return false;
-  EarClipper clipper(fm, strict);
+  EarClipper clipper(fm, fs, strict);
   std::vector<std::array<int, 3>> tris;
   for (const auto& loop : loops)
     if (!clipper.clip(loop, tris)) return false;

@@ -6,10 +6,12 @@
 // into triangles, the best-shaped valid ear first. An ear is valid when it is
 // counter-clockwise in uv, holds no other loop node, and does not join two uv
 // images of one node in space (a seam). In strict mode it must also face the
-// way of the surface normal at its corners (never an inverted triangle).
+// way of the surface normal at its corners and at its uv centroid (never an
+// inverted triangle).
 //
 // Inputs:
 //   fm          the face's mesh with the front's triangles so far
+//   fs          the face's surface sampler
 //   open_edges  front edges left open (FrontResult::open_edges)
 //   strict      refuse ears that turn against the surface normal
 //   max_edges   larger leftovers are not filled (ears alone make poor triangles)
@@ -22,9 +24,11 @@
 #include <vector>
 
 #include "mesher/face_mesh.h"
+#include "mesher/face_surface.h"
 
 namespace sizemesh {
 
-bool fill_front(FaceMesh& fm, const std::vector<std::array<int, 2>>& open_edges, bool strict, int max_edges);
+bool fill_front(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges, bool strict,
+                int max_edges);
 
 }  // namespace sizemesh

@@ -66,8 +66,8 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
     attempts.push_back({&steady, true});
     FrontResult fr;
     auto fill = [&](bool lenient, int max_edges) {
-      return fill_front(r.mesh, fr.open_edges, true, max_edges) ||
-             (lenient && fill_front(r.mesh, fr.open_edges, false, max_edges));
+      return fill_front(r.mesh, fs, fr.open_edges, true, max_edges) ||
+             (lenient && fill_front(r.mesh, fs, fr.open_edges, false, max_edges));
     };
     for (const Attempt& a : attempts) {
       for (int strategy = a.lenient ? 2 : 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
