@@ -5,20 +5,25 @@ namespace sizemesh {
 const std::vector<SizingOption>& sizing_options() {
   using P = SizingParams;
   static const std::vector<SizingOption> table = {
-      {"phi_c", "--phi-c", &P::phi_c_deg, nullptr, "curvature: central angle per element, degrees, in (0, 180)"},
-      {"mu_d", "--mu-d", &P::mu_d, nullptr, "proximity: elements across a thin region, > 0"},
-      {"beta", "--beta", &P::beta, nullptr, "gradation: largest size ratio between neighbouring elements, >= 1"},
-      {"h_min", "--h-min", &P::h_min, nullptr, "smallest element size (model units)"},
-      {"h_max", "--h-max", &P::h_max, nullptr, "largest element size (model units)"},
-      {"deviation", "--deviation", &P::deviation, nullptr,
+      {"phi_c", "--phi-c", &P::phi_c_deg, nullptr, {}, "curvature: central angle per element, degrees, in (0, 180)"},
+      {"mu_d", "--mu-d", &P::mu_d, nullptr, {}, "proximity: elements across a thin region, > 0"},
+      {"beta", "--beta", &P::beta, nullptr, {}, "gradation: largest size ratio between neighbouring elements, >= 1"},
+      {"h_min", "--h-min", &P::h_min, nullptr, {}, "smallest element size (model units)"},
+      {"h_max", "--h-max", &P::h_max, nullptr, {}, "largest element size (model units)"},
+      {"deviation", "--deviation", &P::deviation, nullptr, {},
        "curvature: largest chord height of an element edge off the surface (model units; 0: no bound)"},
-      {"proximity", "--no-proximity", nullptr, &P::proximity,
+      {"proximity", "--no-proximity", nullptr, &P::proximity, {},
        "size from curvature (and user sizes) alone: no face width, curve length or gap sizes"},
-      {"local_proximity", "--no-gaps", nullptr, &P::local_proximity,
+      {"local_proximity", "--no-gaps", nullptr, &P::local_proximity, {},
        "do not refine thin gaps between faces (plates, blunt trailing edges, part gaps)"},
-      {"refine_background", "--no-refine-background", nullptr, &P::refine_background,
+      {"gap_side", "--gap-side", nullptr, nullptr, {"auto", "fluid", "solid", "both"},
+       "gaps to resolve: fluid (between parts), solid (plate thickness), both; auto: fluid for a closed model, "
+       "both for sheets and unsewn faces",
+       0, 0, [](P& p, const std::string& w) { p.gap_side = gap_side_from(w); },
+       [](const P& p) { return std::string(gap_side_name(p.gap_side)); }},
+      {"refine_background", "--no-refine-background", nullptr, &P::refine_background, {},
        "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow"},
-      {"max_triangles", "--max-triangles", &P::max_triangles, nullptr,
+      {"max_triangles", "--max-triangles", &P::max_triangles, nullptr, {},
        "refuse, before meshing, a size map that asks for more triangles (an estimate from the map)", 1.0, 1e15},
   };
   return table;
@@ -31,8 +36,8 @@ void apply_config(const std::string& path, const std::set<std::string>& from_cli
     if (!from_cli.count(o.key)) continue;
     if (o.number) p.*o.number = given.*o.number;
     if (o.on) p.*o.on = given.*o.on;
+    if (o.set) o.set(p, o.get(given));
   }
-  if (from_cli.count("gap_side")) p.gap_side = given.gap_side;
 }
 
 }  // namespace sizemesh

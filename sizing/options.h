@@ -18,9 +18,12 @@ struct SizingOption {
   std::string key;                        // config key
   std::string flag;                       // command-line flag
   double SizingParams::*number = nullptr;  // a number, or
-  bool SizingParams::*on = nullptr;        // a switch, on by default: the flag turns it off
+  bool SizingParams::*on = nullptr;        // a switch, on by default: the flag turns it off, or
+  std::vector<std::string> choices;       // one word of these (read and written through set/get)
   std::string help;
   double cli_lo = 0, cli_hi = 0;          // command-line range when cli_lo < cli_hi
+  void (*set)(SizingParams&, const std::string&) = nullptr;  // choices: store a word (one of them)
+  std::string (*get)(const SizingParams&) = nullptr;         // choices: the word stored
 };
 
 const std::vector<SizingOption>& sizing_options();

@@ -1,5 +1,7 @@
 #include "sizing/params.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -149,7 +151,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   std::set<std::string> known = {"curve_phi_c", "face_phi_c", "face_mu_d", "face_beta",
-                                 "point_size",  "curve_size", "face_size",  "gap_side"};
+                                 "point_size",  "curve_size", "face_size"};
   for (const SizingOption& o : sizing_options()) known.insert(o.key);
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -160,10 +162,15 @@ void read_config(const std::string& path, SizingParams& p) {
       if (!j[o.key].is_boolean()) throw Error("config: " + o.key + " must be true or false");
       p.*o.on = j[o.key].get<bool>();
     }
-  }
-  if (j.contains("gap_side")) {
-    if (!j["gap_side"].is_string()) throw Error("config: gap_side must be a string (auto, fluid, solid or both)");
-    p.gap_side = gap_side_from(j["gap_side"].get<std::string>());
+    if (o.set) {
+      std::string words;
+      for (const std::string& w : o.choices) words += (words.empty() ? "" : ", ") + w;
+      if (!j[o.key].is_string()) throw Error("config: " + o.key + " must be a string (" + words + ")");
+      const std::string w = j[o.key].get<std::string>();
+      if (std::find(o.choices.begin(), o.choices.end(), w) == o.choices.end())
+        throw Error("config: " + o.key + " must be one of " + words + ", got '" + w + "'");
+      o.set(p, w);
+    }
   }
   if (j.contains("curve_phi_c")) read_map(j["curve_phi_c"], "curve_phi_c", p.curve_phi_c_deg, number);
   if (j.contains("face_phi_c")) read_map(j["face_phi_c"], "face_phi_c", p.face_phi_c_deg, number);

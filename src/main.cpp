@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <map>
+#include <string>
 
 #include "sizing/options.h"
 #include "src/info.h"
@@ -48,21 +50,24 @@ int main(int argc, char** argv) {
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
   auto* sizing = "sizing (paper 3.4; h_min/h_max default to 5e-4 and 0.05 of the bounding-box diagonal)";
+  std::map<std::string, std::string> words;  // choice options: the word given
   for (const SizingOption& opt : sizing_options()) {
-    CLI::Option* cli = opt.on ? app.add_flag("!" + opt.flag, o.sizing.*opt.on, opt.help)
-                              : app.add_option(opt.flag, o.sizing.*opt.number, opt.help);
-    if (opt.number && o.sizing.*opt.number != 0) cli->capture_default_str();
+    CLI::Option* cli = nullptr;
+    if (opt.on) {
+      cli = app.add_flag("!" + opt.flag, o.sizing.*opt.on, opt.help);
+    } else if (opt.number) {
+      cli = app.add_option(opt.flag, o.sizing.*opt.number, opt.help);
+      if (o.sizing.*opt.number != 0) cli->capture_default_str();
+    } else {
+      words[opt.key] = opt.get(o.sizing);
+      cli = app.add_option(opt.flag, words[opt.key], opt.help)->capture_default_str()->check(CLI::IsMember(opt.choices));
+    }
     if (opt.cli_lo < opt.cli_hi) cli->check(CLI::Range(opt.cli_lo, opt.cli_hi));
     cli->group(sizing);
   }
   app.add_option("--config", o.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json); a flag given on the command line wins over the file")->group(sizing);
-  std::string gap_side = "auto";
-  app.add_option("--gap-side", gap_side,
-                 "gaps to resolve: fluid (between parts), solid (plate thickness), both; auto: fluid for a closed "
-                 "model, both for sheets and unsewn faces")
-      ->capture_default_str()->check(CLI::IsMember({"auto", "fluid", "solid", "both"}))->group(sizing);
   std::string solver = "exact";
   app.add_option("--smoother", solver, "edge-gradation solver: exact (Dijkstra) or lpsolve (reference LP)")
       ->capture_default_str()->check(CLI::IsMember({"exact", "lpsolve"}))->group(sizing);
@@ -76,10 +81,10 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   o.edge_solver = solver == "lpsolve" ? EdgeSolver::LpSolve : EdgeSolver::Dijkstra;
-  o.sizing.gap_side = gap_side_from(gap_side);
-  if (app.count("--gap-side") > 0) o.sizing_from_cli.insert("gap_side");
-  for (const SizingOption& opt : sizing_options())
+  for (const SizingOption& opt : sizing_options()) {
+    if (opt.set) opt.set(o.sizing, words[opt.key]);
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);
+  }
   try {
     if (info_only) {
       print_info(load_model(o.input, o.load), std::cout);

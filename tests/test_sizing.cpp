@@ -394,7 +394,7 @@ TEST_CASE("bad sizing parameters give one clear error and a non-zero exit") {
   expect_error("--h-min 10 --h-max 1", "is larger than h_max");
   expect_error("--deviation -1", "deviation must be zero (none) or positive");
   expect_error("--config " + config("dev.json", R"({"deviation": "fine"})"), "deviation must be a number");
-  expect_error("--config " + config("side.json", R"({"gap_side": "sideways"})"), "gap side must be auto, fluid, solid or both");
+  expect_error("--config " + config("side.json", R"({"gap_side": "sideways"})"), "gap_side must be one of auto, fluid, solid, both");
   expect_error("--config " + config("side2.json", R"({"gap_side": 1})"), "gap_side must be a string");
   CHECK(test::run_sizemesh(wing + " -q --gap-side sideways").status == 2);
   expect_error("--config " + config("id.json", R"({"face_size": {"99": 1.0}})"), "names face 99 but the model has 11");
