@@ -201,8 +201,23 @@ class Front {
     bool in_space = false;  // placed by the space procedure
   };
 
+  // Why a candidate triangle is refused (check() returns these, all negative;
+  // the values name the test, they are not ranked).
+  enum Refusal : int {
+    kFoldedInUv = -1,        // not counter-clockwise in uv
+    kCrossesFront = -2,      // a new edge crosses a front edge
+    kHoldsFrontNode = -3,    // a front node inside or on the triangle
+    kZeroAreaInSpace = -4,   // its corners are collinear in space
+    kTurnedAtCorner = -5,    // against the surface normal at a corner
+    kPoorShape = -6,         // shape quality not above 1e-6
+    kSliverLeft = -7,        // a front node just beside a new edge (a sliver later)
+    kNonManifold = -8,       // joins two uv images of one node, or repeats an edge in space
+    kTurnedAtCentroid = -9,  // against the surface normal at the uv centroid (or not evaluable there)
+    kOutsideOpenAngle = -10, // leaves the unmeshed region through a front node
+  };
+
   // Validity of triangle (a, b, c) against the front, in uv and in space.
-  // Returns the shape quality, or -1 when invalid.
+  // Returns the shape quality, or a (negative) Refusal.
   double check(int a, int b, const Candidate& c, const Level& lv) {
     const Vec2& ua = fm_.uv[a];
     const Vec2& ub = fm_.uv[b];
@@ -213,26 +228,26 @@ class Front {
       gather(box_lo_.cwiseMin(uc), box_hi_.cwiseMax(uc));
     const double o = orient(ua, ub, uc);
     const double scale = (ub - ua).norm() * ((uc - ua).norm() + (uc - ub).norm());
-    if (!(o > 1e-10 * scale)) return -1;
+    if (!(o > 1e-10 * scale)) return kFoldedInUv;
     // Seam copies: no triangle joins two uv images of one node, and no inner
     // edge repeats a boundary edge in space (it would be non-manifold).
     if (c.node >= 0 && fm_.global[c.node] >= 0) {
       const int gc = fm_.global[c.node];
       if ((gc == fm_.global[a] && !pole_pair(a, c.node)) || (gc == fm_.global[b] && !pole_pair(b, c.node)))
-        return -8;
+        return kNonManifold;
     }
     // The triangle lies in the unmeshed region at each of its corners: an edge
     // leaving a front node outside the node's open angle crosses no front edge
     // yet escapes through the node (into the meshed part or out of the domain).
     if (!within_open_angle(a, ub, uc) || !within_open_angle(b, uc, ua) ||
         (c.node >= 0 && !within_open_angle(c.node, ua, ub)))
-      return -10;
+      return kOutsideOpenAngle;
     work_ += static_cast<long long>(near_edges_.size() + near_nodes_.size());
     // New edges must cross no front edge.
     const bool new_ac = c.node < 0 || find_edge(c.node, a) < 0;
     const bool new_cb = c.node < 0 || find_edge(b, c.node) < 0;
     if (c.node >= 0 && ((new_ac && used_in_space(a, c.node)) || (new_cb && used_in_space(c.node, b))))
-      return -8;
+      return kNonManifold;
     for (int ei : near_edges_) {
       const FrontEdge& e = edges_[ei];
       if (!e.alive) continue;
@@ -240,10 +255,10 @@ class Front {
       const Vec2& q = fm_.uv[e.b];
       if (new_ac && e.a != a && e.b != a && e.a != c.node && e.b != c.node &&
           segments_meet(ua, uc, p, q))
-        return -2;
+        return kCrossesFront;
       if (new_cb && e.a != b && e.b != b && e.a != c.node && e.b != c.node &&
           segments_meet(uc, ub, p, q))
-        return -2;
+        return kCrossesFront;
     }
     // No front node inside or on the triangle.
     const double tol = -1e-10 * o;
@@ -251,11 +266,11 @@ class Front {
       if (k == a || k == b || k == c.node) continue;
       const Vec2& uk = fm_.uv[k];
       if (orient(ua, ub, uk) >= tol && orient(ub, uc, uk) >= tol && orient(uc, ua, uk) >= tol)
-        return -3;
+        return kHoldsFrontNode;
       // Nor (in space) just beside a new edge: it would leave a sliver for later.
       if (lv.cos_min > -1 && !fm_.pole[k] && ((new_ac && near_segment(fm_.s[a].p, c.s.p, fm_.s[k].p)) ||
                            (new_cb && near_segment(c.s.p, fm_.s[b].p, fm_.s[k].p))))
-        return -7;
+        return kSliverLeft;
     }
     // Space: the triangle faces the way of the surface normal (Tremel procedure 2).
     const bool pole_tri = pole_pair(a, b) || (c.node >= 0 && (pole_pair(b, c.node) || pole_pair(c.node, a)));
@@ -265,12 +280,12 @@ class Front {
     const Vec3& pc = c.s.p;
     const Vec3 nt = (pb - pa).cross(pc - pa);
     const double lt = nt.norm();
-    if (!(lt > 0)) return -4;
+    if (!(lt > 0)) return kZeroAreaInSpace;
     const Vec3* normals[3] = {&fm_.s[a].n, &fm_.s[b].n, &c.s.n};  // zero on poles
     for (const Vec3* n : normals)
-      if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return -5;
+      if (n->squaredNorm() > 0 && nt.dot(*n) <= lv.cos_min * lt) return kTurnedAtCorner;
     const double q = triangle_quality(pa, pb, pc);
-    if (!(q > 1e-6)) return -6;
+    if (!(q > 1e-6)) return kPoorShape;
     // And at the uv centroid, where a curved surface may turn away between
     // corners: never against the normal there (the quality report's test for
     // an inverted triangle), but in a lenient run's loosest levels.
@@ -279,9 +294,9 @@ class Front {
       try {
         nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
       } catch (const EvaluationError&) {
-        return -9;
+        return kTurnedAtCentroid;
       }
-      if (nc.squaredNorm() > 0 && nt.dot(nc) <= std::max(lv.cos_min, 0.0) * lt) return -9;
+      if (nc.squaredNorm() > 0 && nt.dot(nc) <= std::max(lv.cos_min, 0.0) * lt) return kTurnedAtCentroid;
     }
     return q;
   }
