@@ -145,31 +145,32 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
       // The divided edges keep their old flags: recompute them (and the
       // tolerances they need) before judging the result.
       BRepLib::SameParameter(result, Precision::Confusion(), true);
+      // Each face the division replaced, with its pieces (one piece: only its
+      // edges were divided, by a neighbour's split).
       const Handle(ShapeBuild_ReShape) context = divide.GetContext();
+      std::vector<std::pair<TopoDS_Face, std::vector<TopoDS_Face>>> replaced;
       bool valid = true;
       for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& f = TopoDS::Face(ex.Current());
         const TopoDS_Shape now = context->Apply(f);
         if (now.IsSame(f)) continue;
-        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
-          if (!BRepCheck_Analyzer(p.Current()).IsValid()) {
-            whole.insert(BRep_Tool::Surface(f).get());
-            valid = false;
-            break;
-          }
+        std::vector<TopoDS_Face> pieces;
+        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next()) pieces.push_back(TopoDS::Face(p.Current()));
+        if (!std::all_of(pieces.begin(), pieces.end(),
+                         [](const TopoDS_Face& piece) { return BRepCheck_Analyzer(piece).IsValid(); })) {
+          whole.insert(BRep_Tool::Surface(f).get());
+          valid = false;
+        }
+        replaced.push_back({f, std::move(pieces)});
       }
       if (!valid) continue;
       // A closed shape stays closed (an open one gains free curves where its
       // free boundary is divided).
       if ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid())
         return shape;
-      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
-        const TopoDS_Face& f = TopoDS::Face(ex.Current());
-        const TopoDS_Shape now = context->Apply(f);
-        if (now.IsSame(f)) continue;
-        int pieces = 0;
-        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next(), ++pieces) follow(f, TopoDS::Face(p.Current()));
-        split += pieces > 1;
+      for (const auto& [f, pieces] : replaced) {
+        for (const TopoDS_Face& piece : pieces) follow(f, piece);
+        split += pieces.size() > 1;
       }
       return result;
     } catch (const Standard_Failure&) {

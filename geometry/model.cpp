@@ -101,18 +101,13 @@ TopoDS_Shape solids_from_closed_shells(const TopoDS_Shape& sewn) {
   return any_solid ? TopoDS_Shape(out) : sewn;
 }
 
-double face_area_exact(const TopoDS_Shape& face) {
+// Area by OCCT's fixed-order rule, or (relative_eps > 0) adaptively to that
+// relative accuracy: for faces the preparation made (union pieces, faces split
+// or with split edges), where the fixed rule can be off by a few percent.
+double face_area_exact(const TopoDS_Shape& face, double relative_eps = 0) {
   GProp_GProps props;
-  BRepGProp::SurfaceProperties(face, props);
-  return std::abs(props.Mass());
-}
-
-// The same to a relative accuracy: for faces the preparation made (union
-// pieces, faces split or with split edges), where the fixed-order rule above
-// can be off by a few percent.
-double face_area_adaptive(const TopoDS_Shape& face) {
-  GProp_GProps props;
-  BRepGProp::SurfaceProperties(face, props, 1e-7);
+  if (relative_eps > 0) BRepGProp::SurfaceProperties(face, props, relative_eps);
+  else BRepGProp::SurfaceProperties(face, props);
   return std::abs(props.Mass());
 }
 
@@ -266,7 +261,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
   PreparedShape prepared;
   try {
     // Unsewn faces are each a component of their own: repair and union need sewing.
-    prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, options.unite && options.sew,
+    prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, info.diagonal(), options.unite && options.sew,
                              info.preparation);
   } catch (const Standard_Failure& e) {
     // The preparation only ever improves the model: without it, mesh what was read.
@@ -314,7 +309,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
     std::vector<double> area(info.faces, -1.0);
     tbb::parallel_for(0, info.faces, [&](int f) {
       const TopoDS_Shape& face = impl->faces(f + 1);
-      area[f] = cad.area.IsBound(face) ? cad.area(face) : face_area_adaptive(face);
+      area[f] = cad.area.IsBound(face) ? cad.area(face) : face_area_exact(face, 1e-7);
     });
     impl->face_data.reserve(info.faces);
     for (int f = 1; f <= info.faces; ++f)

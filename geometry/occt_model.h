@@ -79,9 +79,11 @@ struct PreparedShape {
   TopTools_DataMapOfShapeInteger source;
 };
 // geometry/prepare.cpp: components, repair and (when `unite`) union.
-// `area`: exact areas of the sewn faces.
+// `area`: exact areas of the sewn faces; `diagonal`: the model's bounding-box
+// diagonal.
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
-                            const TopTools_DataMapOfShapeReal& area, double tolerance, bool unite, Preparation& info);
+                            const TopTools_DataMapOfShapeReal& area, double tolerance, double diagonal, bool unite,
+                            Preparation& info);
 
 // geometry/fold_split.cpp: faces of `shape` split along their C0 knot lines
 // where the surface turns over (normals more than 60 degrees apart) within

@@ -323,15 +323,6 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
 }
 
 double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm(); }
-double diagonal_of(const Preparation& p) {
-  if (p.components.empty()) return 0;
-  Vec3 lo = p.components[0].bbox_min, hi = p.components[0].bbox_max;
-  for (const Component& c : p.components) {
-    lo = lo.cwiseMin(c.bbox_min);
-    hi = hi.cwiseMax(c.bbox_max);
-  }
-  return (hi - lo).norm();
-}
 
 using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
 
@@ -384,7 +375,8 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 }  // namespace
 
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
-                            const TopTools_DataMapOfShapeReal& area, double tol, bool unite, Preparation& info) {
+                            const TopTools_DataMapOfShapeReal& area, double tol, double diagonal, bool unite,
+                            Preparation& info) {
   PreparedShape out;
   info = Preparation{};
   info.union_requested = unite;
@@ -497,7 +489,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     result = all;
   }
   // Folds narrower than half the default smallest element become curves.
-  out.shape = split_folds(result, kFoldBand * diagonal_of(info), follow, info.faces_split_at_folds);
+  out.shape = split_folds(result, kFoldBand * diagonal, follow, info.faces_split_at_folds);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());
   return out;
 }

@@ -13,6 +13,15 @@ FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
       period_v_(g.face_period_v(face)),
       fallback_h_(std::max(g.face_boundary_length(face) / 12, 1e-300)) {}
 
+bool FaceSurface::turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2& uc, const Vec3& nt) const {
+  try {
+    const Vec3 nc = eval_shape((ua + ub + uc) / 3.0).n;
+    return nc.squaredNorm() > 0 && !(nt.dot(nc) > 0);
+  } catch (const EvaluationError&) {
+    return true;
+  }
+}
+
 SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
   const SurfaceD1 d = g_.eval_face(face_, uv);
   SurfaceSample s;

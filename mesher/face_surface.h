@@ -36,6 +36,10 @@ class FaceSurface {
   SurfaceSample eval(const Vec2& uv);
   // The same without the size (h left 0): for moves that do not need it.
   SurfaceSample eval_shape(const Vec2& uv) const;
+  // A triangle with corners ua, ub, uc and normal nt in space turns against
+  // the surface at its uv centroid (the quality report's inverted triangle),
+  // or the surface cannot be evaluated there.
+  bool turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2& uc, const Vec3& nt) const;
   // Nearest point of the surface to xyz, from the start uv; the result is
   // shifted by whole periods to lie closest to the start. False if it fails.
   bool project(const Vec3& xyz, Vec2& uv) const;

@@ -98,12 +98,7 @@ class EarClipper {
     const Vec3 nt = (sb.p - sa.p).cross(sc.p - sa.p);
     for (const SurfaceSample* s : {&sa, &sb, &sc})
       if (s->n.squaredNorm() > 0 && !(nt.dot(s->n) > 0)) return true;
-    try {
-      const Vec3 nc = fs_.eval_shape((ua + ub + uc) / 3.0).n;
-      return nc.squaredNorm() > 0 && !(nt.dot(nc) > 0);
-    } catch (const EvaluationError&) {
-      return true;
-    }
+    return fs_.turned_at_centroid(ua, ub, uc, nt);
   }
 
   // A node's identity in space: its shared id on the boundary (seam copies agree), else its own.

@@ -25,12 +25,7 @@ double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample
   const SurfaceSample* corners[3] = {&sa, &sb, &sc};
   for (const SurfaceSample* s : corners)  // normals are zero on poles
     if (s->n.squaredNorm() > 0 && nt.dot(s->n) < kCosMin * lt) return -1;
-  try {
-    const Vec3 nc = fs.eval_shape((ua + ub + uc) / 3.0).n;
-    if (nc.squaredNorm() > 0 && !(nt.dot(nc) > 0)) return -1;
-  } catch (const EvaluationError&) {
-    return -1;
-  }
+  if (fs.turned_at_centroid(ua, ub, uc, nt)) return -1;
   return triangle_quality(sa.p, sb.p, sc.p);
 }
 
