@@ -340,6 +340,9 @@ Model::~Model() = default;
 const ModelInfo& Model::info() const { return impl_->info; }
 std::string Model::face_name(int face) const { return impl_->face_names.at(face - 1); }
 int Model::source_face(int face) const { return impl_->source_face.at(face - 1); }
+Boundary Model::boundary(int face) const {
+  return impl_->boundary.empty() ? Boundary::Wall : impl_->boundary.at(face - 1);
+}
 
 int Model::fluid_side() const {
   if (!closed()) return 0;

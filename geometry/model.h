@@ -49,6 +49,8 @@ class Model : public Geometry {
   // The sewn model's face (1..info().sewn_faces) this face came from; the
   // face itself when no union ran; 0 when unknown.
   int source_face(int face) const;
+  // What the face bounds: the body, the far field or the symmetry plane.
+  Boundary boundary(int face) const;
   // Faces (ids) of each solid; empty when the model has no solids.
   std::vector<std::vector<int>> solid_faces() const;
   // True when every non-degenerate curve bounds exactly two face sides.

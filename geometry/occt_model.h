@@ -49,6 +49,7 @@ struct Model::Impl {
   std::vector<OcctFace> face_data;    // index id - 1
   std::vector<OcctCurve> curve_data;  // index id - 1
   std::vector<int> source_face;       // index id - 1: the sewn model's face it came from
+  std::vector<Boundary> boundary;     // index id - 1: what the face bounds (Wall when empty)
 };
 
 // A file's shape after sewing, before preparation: what read_cad returns.

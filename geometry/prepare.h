@@ -10,6 +10,10 @@
 
 namespace sizemesh {
 
+// What a face bounds, for the solver: the body (a wall), the outer boundary
+// of the flow domain, or the symmetry plane of a half model.
+enum class Boundary { Wall, Farfield, Symmetry };
+
 // One connected piece of the sewn model (a shell, or a face on its own).
 struct Component {
   int faces = 0;

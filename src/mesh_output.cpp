@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 
+#include "src/cgns_writer.h"
 #include "src/vtu_writer.h"
 
 namespace sizemesh {
@@ -19,13 +20,8 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
-// The sewn model's face that face f came from (f itself when none is given).
-int source_of(const std::vector<int>& source_face, int f) {
-  return f >= 1 && f <= static_cast<int>(source_face.size()) ? source_face[f - 1] : f;
-}
-
 // Gmsh 4.1: nodes are listed by the first face that uses them; elements by face.
-void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face) {
+void write_msh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels) {
   std::ofstream out(path);
   if (!out) throw Error("cannot write '" + path + "'");
   std::map<int, std::vector<int>> face_tris;
@@ -43,10 +39,10 @@ void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<
 
   out.precision(17);
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  std::map<int, int> groups;  // source face -> entities in it
-  for (const auto& [f, ts] : face_tris) ++groups[source_of(source_face, f)];
+  std::map<int, int> groups;  // marker -> entities in it
+  for (const auto& [f, ts] : face_tris) ++groups[labels.marker_of(f)];
   out << "$PhysicalNames\n" << groups.size() << "\n";
-  for (const auto& [s, n] : groups) out << "2 " << s << " \"face_" << s << "\"\n";
+  for (const auto& [s, n] : groups) out << "2 " << s << " \"" << labels.markers.at(s).name << "\"\n";
   out << "$EndPhysicalNames\n";
   out << "$Entities\n0 0 " << face_tris.size() << " 0\n";
   for (const auto& [f, ts] : face_tris) {
@@ -54,7 +50,7 @@ void write_msh(const std::string& path, const SurfaceMesh& m, const std::vector<
     for (int t : ts)
       for (int n : m.tris[t]) box.extend(m.xyz[n]);
     out << f << " " << box.min().x() << " " << box.min().y() << " " << box.min().z() << " " << box.max().x() << " "
-        << box.max().y() << " " << box.max().z() << " 1 " << source_of(source_face, f) << " 0\n";
+        << box.max().y() << " " << box.max().z() << " 1 " << labels.marker_of(f) << " 0\n";
   }
   out << "$EndEntities\n";
   out << "$Nodes\n" << face_nodes.size() << " " << used_nodes << " 1 " << m.xyz.size() << "\n";
@@ -99,18 +95,19 @@ void write_stl(const std::string& path, const SurfaceMesh& m) {
 
 void check_mesh_format(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext != ".vtu" && ext != ".msh" && ext != ".stl")
-    throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh or .stl)");
+  if (ext != ".vtu" && ext != ".msh" && ext != ".stl" && ext != ".cgns")
+    throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh, .stl or .cgns)");
 }
 
-void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face,
+void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels,
                 const std::vector<double>& min_angle, const std::vector<double>& target_size) {
   const std::string ext = extension(path);
-  if (ext == ".msh") return write_msh(path, m, source_face);
+  if (ext == ".msh") return write_msh(path, m, labels);
+  if (ext == ".cgns") return write_cgns(path, m, labels);
   if (ext == ".stl") return write_stl(path, m);
   std::vector<double> dim(m.node_dim.begin(), m.node_dim.end()), entity(m.node_entity.begin(), m.node_entity.end());
   std::vector<double> source_ids(m.tri_face.size());
-  for (size_t t = 0; t < m.tri_face.size(); ++t) source_ids[t] = source_of(source_face, m.tri_face[t]);
+  for (size_t t = 0; t < m.tri_face.size(); ++t) source_ids[t] = labels.marker_of(m.tri_face[t]);
   write_vtu(path, m.xyz, m.tris,
             {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
             {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},

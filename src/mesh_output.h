@@ -4,20 +4,22 @@
 //   .msh  Gmsh 4.1 ASCII, one surface entity per face, in the physical group
 //         of its source face ("face_<id>": the sewn model's face it came from)
 //   .stl  binary STL
+//   .cgns CGNS (src/cgns_writer.h)
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "mesher/surface_mesh.h"
+#include "src/mesh_labels.h"
 
 namespace sizemesh {
 
 // Throws Error for an unknown extension (checked before meshing) ...
 void check_mesh_format(const std::string& path);
 // ... or a file that cannot be written.
-// source_face[f - 1]: the sewn model's face that face f came from (geometry/prepare.h).
-void write_mesh(const std::string& path, const SurfaceMesh& m, const std::vector<int>& source_face,
+// labels: each face's marker, name and boundary kind (src/mesh_labels.h).
+void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels,
                 const std::vector<double>& min_angle, const std::vector<double>& target_size);
 
 }  // namespace sizemesh

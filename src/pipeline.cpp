@@ -149,7 +149,7 @@ int run(const RunOptions& o) {
     report.quality = mesh_quality(mesh, model, query);
     clock.lap("quality");
     const std::vector<double> target = target_sizes(mesh, query);
-    write_mesh(o.output, mesh, source_face, report.quality.min_angle, target);
+    write_mesh(o.output, mesh, label_faces(model), report.quality.min_angle, target);
     clock.lap("output");
     measure_h_min(mesh, target, h.h_min, report);
     if (o.verbose) print_mesh_summary(report, std::cout);
