@@ -5,6 +5,8 @@
 // BRepMesh discretises an edge once) gives its dimension-1 vertices, and the
 // remaining triangulation nodes of a face are its own dimension-2 vertices.
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <BRep_Tool.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
@@ -238,8 +240,24 @@ BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions
     throw Error("tessellation deflection and angle must be positive");
   const double diag = model.info().diagonal();
   try {
-    BRepMesh_IncrementalMesh mesh(model.impl().shape, options.deflection_rel * diag, false,
-                                  options.angle_deg * M_PI / 180.0, true);
+    const double angle = options.angle_deg * M_PI / 180.0;
+    const double far = model.info().domain.size;
+    if (far > 0) {
+      // The far field, many body diagonals across, at a deflection relative
+      // to its own size; then the rest (the body and the symmetry plane,
+      // which share curves) at the body's. Curves the far field shares with
+      // the symmetry plane keep their first discretisation.
+      TopoDS_Compound outer, rest;
+      BRep_Builder b;
+      b.MakeCompound(outer);
+      b.MakeCompound(rest);
+      for (int f = 1; f <= model.num_faces(); ++f)
+        b.Add(model.boundary(f) == Boundary::Farfield ? outer : rest, model.impl().faces(f));
+      BRepMesh_IncrementalMesh(outer, 10 * options.deflection_rel * far, false, angle, true);
+      BRepMesh_IncrementalMesh(rest, options.deflection_rel * diag, false, angle, true);
+    } else {
+      BRepMesh_IncrementalMesh(model.impl().shape, options.deflection_rel * diag, false, angle, true);
+    }
   } catch (const Standard_Failure& e) {
     throw Error(std::string("tessellation failed: ") + e.GetMessageString());
   }

@@ -60,8 +60,6 @@ TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell) {
   return solid;
 }
 
-namespace {
-
 double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
   Bnd_Box box;
   BRepBndLib::Add(shape, box, false);
@@ -77,6 +75,8 @@ double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi) {
                 " file units; valid models span 1e-9 to 1e12)");
   return diag;
 }
+
+namespace {
 
 // Sewing returns shells; closed ones become solids again so the model keeps its volumes.
 TopoDS_Shape solids_from_closed_shells(const TopoDS_Shape& sewn) {
@@ -270,8 +270,17 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
     prepared.shape = cad.shape;
     info.preparation.fallback = std::string("the preparation failed: ") + e.GetMessageString();
   }
+  bbox_diagonal(prepared.shape, info.bbox_min, info.bbox_max);  // the body's: sizes stay relative to it
+  TopTools_DataMapOfShapeInteger kind;
+  if (options.domain.active()) {
+    try {
+      prepared.shape = add_flow_domain(prepared.shape, prepared.source, options.domain, info.bbox_min, info.bbox_max,
+                                       cad.tolerance, info.domain, kind);
+    } catch (const Standard_Failure& e) {
+      throw Error(std::string("the flow domain could not be built: ") + e.GetMessageString());
+    }
+  }
   const TopoDS_Shape& shape = prepared.shape;
-  bbox_diagonal(shape, info.bbox_min, info.bbox_max);
   info.free_curves_after_sewing = count_free_curves(shape);
 
   impl->shape = shape;
@@ -288,8 +297,11 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
   if (info.faces == 0) throw Error("the model has no faces");
 
   impl->source_face.assign(info.faces, 0);
-  for (int f = 1; f <= info.faces; ++f)
+  impl->boundary.assign(info.faces, Boundary::Wall);
+  for (int f = 1; f <= info.faces; ++f) {
     if (prepared.source.IsBound(impl->faces(f))) impl->source_face[f - 1] = prepared.source(impl->faces(f));
+    if (kind.IsBound(impl->faces(f))) impl->boundary[f - 1] = static_cast<Boundary>(kind(impl->faces(f)));
+  }
   std::vector<std::string> original_names(info.sewn_faces + 1);
   for (const auto& [s, name] : cad.names) {
     const int id = original.FindIndex(s);

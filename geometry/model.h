@@ -11,10 +11,35 @@
 
 namespace sizemesh {
 
+// The outer boundary of the flow domain around the body, and the symmetry
+// plane of a half model (geometry/flow_domain.cpp).
+struct FlowDomainOptions {
+  enum class FarField { None, Sphere, Box };
+  FarField farfield = FarField::None;
+  double size = 0;          // sphere radius or half the box side; 0: 20 body diagonals
+  double element_size = 0;  // element size on the far field; 0: a tenth of `size`
+  int symmetry_axis = -1;   // -1 none, 0 x, 1 y, 2 z: keep the body on one side of that plane
+  double symmetry_at = 0;   // the plane's coordinate ...
+  bool symmetry_at_given = false;  // ... when given; else 0, or the body's nearest side to 0
+  bool active() const { return farfield != FarField::None || symmetry_axis >= 0; }
+};
+
 struct LoadOptions {
   bool sew = true;                  // sew faces that touch so they share curves
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
   bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
+  FlowDomainOptions domain;
+};
+
+// What the flow-domain step built (all zero when none was asked for).
+struct FlowDomain {
+  std::string farfield;        // "sphere", "box" or empty
+  Vec3 center = Vec3::Zero();
+  double size = 0, element_size = 0;
+  int symmetry_axis = -1;
+  double symmetry_at = 0;
+  int farfield_faces = 0, symmetry_faces = 0;
+  std::vector<Vec3> inside_points;  // one inside each closed body the far field surrounds (volume meshers' holes)
 };
 
 struct ModelInfo {
@@ -32,6 +57,7 @@ struct ModelInfo {
   std::string first_failure;   // the first of them: "entity #26 (AXIS2_PLACEMENT_3D): <reason>"
   int sewn_faces = 0;          // faces after sewing: the ids the config file and --no-union use
   Preparation preparation;     // components, repair and union
+  FlowDomain domain;           // far field and symmetry plane; the bounding box is the body's
   double diagonal() const { return (bbox_max - bbox_min).norm(); }
 };
 

@@ -97,6 +97,18 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
 TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
                          const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split);
 
+// geometry/flow_domain.cpp: the far field and the symmetry plane around the
+// prepared `body` (bounding box lo..hi, model tolerance `tol`). `source` is
+// updated for the body's faces the cut splits; `kind` gets Boundary::Farfield
+// or Boundary::Symmetry (as int) for the faces that bound the domain. Throws
+// Error when the far field is too small or the body cannot be cut.
+TopoDS_Shape add_flow_domain(const TopoDS_Shape& body, TopTools_DataMapOfShapeInteger& source,
+                             const FlowDomainOptions& o, const Vec3& lo, const Vec3& hi, double tol,
+                             FlowDomain& info, TopTools_DataMapOfShapeInteger& kind);
+
+// The bounding box of a shape; throws Error when it is empty or unusable.
+double bbox_diagonal(const TopoDS_Shape& shape, Vec3& lo, Vec3& hi);
+
 // sew_shape then prepare_model.
 Model model_from_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& options,
                        const std::vector<std::pair<TopoDS_Shape, std::string>>& names = {});

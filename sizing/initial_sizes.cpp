@@ -31,6 +31,23 @@ void gradation_bounds(const BackgroundMesh& bg, const SizingParams& p, SizeMap& 
       m.edge_log_beta[e] = seen[e] ? std::min(m.edge_log_beta[e], m.tri_log_beta[t]) : m.tri_log_beta[t];
       seen[e] = true;
     }
+  for (int t = 0; t < bg.num_triangles(); ++t)
+    if (p.edge_graded_faces.count(bg.tri_face[t])) m.tri_log_beta[t] = kNoLimit;
+}
+
+// The largest size at each vertex: h_max, or the least of its faces' own.
+std::vector<double> size_caps(const BackgroundMesh& bg, const SizingParams& p, double h_max) {
+  std::vector<double> cap(bg.num_vertices(), h_max);
+  if (p.face_h_max.empty()) return cap;
+  for (int v = 0; v < bg.num_vertices(); ++v) {
+    double c = INFINITY;
+    for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
+      auto it = p.face_h_max.find(bg.use_face[u]);
+      c = std::min(c, it == p.face_h_max.end() ? h_max : it->second);
+    }
+    if (std::isfinite(c)) cap[v] = c;
+  }
+  return cap;
 }
 
 }  // namespace
@@ -64,13 +81,15 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   m.t_user = now() - t;
 
   const int nv = bg.num_vertices();
+  m.h_cap = size_caps(bg, p, m.h_max);
+  const std::vector<double>& cap = m.h_cap;
   m.h_proximity.resize(nv);
   m.h_initial.resize(nv);
   m.limit.resize(nv);
   for (int v = 0; v < nv; ++v) {
     m.h_proximity[v] = std::min({h_face[v], h_curve[v], h_gap.fluid[v], h_gap.solid[v]});
     // h_a = max(h_min, min(h_d, h_c, h_u, h_max)), remembering which term won.
-    std::pair<double, Limit> best{m.h_max, Limit::HMax};
+    std::pair<double, Limit> best{cap[v], cap[v] == m.h_max ? Limit::HMax : Limit::FarField};
     for (auto c : {std::make_pair(m.h_curvature[v], Limit::Curvature), std::make_pair(h_face[v], Limit::FaceProximity),
                    std::make_pair(h_curve[v], Limit::CurveLength), std::make_pair(h_gap.fluid[v], Limit::Gap),
                    std::make_pair(h_gap.solid[v], Limit::Thickness),

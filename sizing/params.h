@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ struct SizingParams {
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;
+  // Largest size per face in place of h_max (the far field and the symmetry
+  // plane grade up to their own size); a vertex takes the least of its faces'.
+  std::map<int, double> face_h_max;
+  // Faces graded along background edges only (Eq. 12 without Eq. 11): the far
+  // field and the symmetry plane, whose planar tessellation spans many body
+  // diagonals in slivers too thin for a gradient to mean anything.
+  std::set<int> edge_graded_faces;
 
   // Absolute bounds for a model of this bounding-box diagonal.
   double resolved_h_min(double diagonal) const { return h_min > 0 ? h_min : h_min_rel * diagonal; }

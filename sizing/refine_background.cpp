@@ -46,11 +46,12 @@ SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingPar
       const double l = (bg.xyz[a] - bg.xyz[b]).norm();
       const double lo = std::min(h[a], h[b]), hi = std::max(h[a], h[b]);
       const double linear = 0.5 * (lo + hi);
+      const double cap = std::max(m.h_cap[a], m.h_cap[b]);
       // Graded against linear at the middle, and a quarter of the way from the
       // smaller end: with the far end at h_max the middle can never gain 2x.
       double gain = 0;
       for (double x : {0.25, 0.5})
-        gain = std::max(gain, std::min(m.h_max, lo + m.edge_log_beta[e] * x * l) / (lo + x * (hi - lo)));
+        gain = std::max(gain, std::min(cap, lo + m.edge_log_beta[e] * x * l) / (lo + x * (hi - lo)));
       if (!(gain > kRefineGain) && !(m.h_min * kCurvatureMiss < linear)) continue;
       const double curved = midpoint_curvature_size(g, bg, p, a, b);
       // Room to grow that the curvature there allows, or a curvature the ends miss.

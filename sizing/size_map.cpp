@@ -12,6 +12,7 @@ const char* limit_name(Limit l) {
     case Limit::Thickness: return "thickness of the solid";
     case Limit::User: return "user size";
     case Limit::HMin: return "h_min";
+    case Limit::FarField: return "far-field size";
   }
   return "?";
 }

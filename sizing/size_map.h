@@ -11,8 +11,9 @@ namespace sizemesh {
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
 // What set a vertex's initial size h_a (paper 3.4).
-enum class Limit : int8_t { HMax = 0, Curvature, FaceProximity, CurveLength, Gap, Thickness, User, HMin };
-constexpr int kNumLimits = 8;
+// FarField: the own size of the far field and the symmetry plane (in place of h_max).
+enum class Limit : int8_t { HMax = 0, Curvature, FaceProximity, CurveLength, Gap, Thickness, User, HMin, FarField };
+constexpr int kNumLimits = 9;
 const char* limit_name(Limit l);
 
 struct SizeMap {
@@ -23,6 +24,7 @@ struct SizeMap {
   std::vector<double> h_initial;    // h_a = max(h_min, min(h_d, h_c, h_u, h_max))
   std::vector<double> h;            // smoothed (after smooth()); starts as h_initial
   std::vector<Limit> limit;         // which term gave h_a
+  std::vector<double> h_cap;        // the largest size allowed: h_max, or the least of its faces' own
   // Per background edge (#E) and triangle (#T): ln(beta) bound of the gradation.
   std::vector<double> edge_log_beta, tri_log_beta;
   double h_min = 0, h_max = 0;

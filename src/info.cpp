@@ -41,6 +41,14 @@ void print_info(const Model& model, std::ostream& out) {
         << " internal faces removed; " << prep.faces_split_at_folds << " split at folds or parameter jumps; "
         << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
   }
+  const FlowDomain& d = i.domain;
+  if (!d.farfield.empty())
+    out << std::setprecision(6) << "far field:   " << d.farfield << " of size " << d.size << " around [" << d.center.x()
+        << ", " << d.center.y() << ", " << d.center.z() << "], elements " << d.element_size << ", "
+        << d.farfield_faces << " faces; " << d.inside_points.size() << " bodies inside\n";
+  if (d.symmetry_axis >= 0)
+    out << std::setprecision(6) << "symmetry:    " << static_cast<char>('x' + d.symmetry_axis) << " = " << d.symmetry_at
+        << ", " << d.symmetry_faces << " faces\n";
   if (i.entities_failed)
     out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";
   int named = 0;

@@ -1,6 +1,7 @@
 // sizemesh: automatic element sizing and surface meshing of CAD models.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <string>
@@ -22,6 +23,17 @@ const auto positive = CLI::Validator(
       return "must be a positive number, got '" + s + "'";
     },
     "POSITIVE");
+const auto finite_number = CLI::Validator(
+    [](std::string& s) -> std::string {
+      try {
+        size_t pos = 0;
+        const double v = std::stod(s, &pos);
+        if (pos == s.size() && std::abs(v) < 1e300) return {};
+      } catch (...) {
+      }
+      return "must be a finite number, got '" + s + "'";
+    },
+    "NUMBER");
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,6 +61,22 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(positive);
   app.add_option("--angle", o.tessellation.angle_deg, "background tessellation: angular deflection in degrees")
       ->capture_default_str()->check(CLI::Range(0.1, 90.0));
+  const auto* domain = "flow domain (faces marked 'farfield' and 'symmetry' in every output format)";
+  std::string farfield = "none", symmetry = "none";
+  app.add_option("--farfield", farfield, "outer boundary around the body: none, sphere or box")
+      ->capture_default_str()->check(CLI::IsMember({"none", "sphere", "box"}))->group(domain);
+  app.add_option("--farfield-size", o.load.domain.size,
+                 "far-field radius (sphere) or half side (box), centred on the body (default 20 body diagonals)")
+      ->check(positive)->group(domain);
+  app.add_option("--farfield-h", o.load.domain.element_size, "element size on the far field (default a tenth of its size)")
+      ->check(positive)->group(domain);
+  auto* at = app.add_option("--symmetry-at", o.load.domain.symmetry_at,
+                            "coordinate of the symmetry plane (default 0, or the body's side nearest to 0)")
+                 ->check(finite_number)->group(domain);
+  app.add_option("--symmetry", symmetry,
+                 "half model: cut the body and the far field at the plane x, y or z = --symmetry-at, keep the "
+                 "larger side")
+      ->capture_default_str()->check(CLI::IsMember({"none", "x", "y", "z"}))->group(domain);
   auto* sizing = "sizing (paper 3.4; h_min/h_max default to 5e-4 and 0.05 of the bounding-box diagonal)";
   std::map<std::string, std::string> words;  // choice options: the word given
   for (const SizingOption& opt : sizing_options()) {
@@ -81,6 +109,10 @@ int main(int argc, char** argv) {
     return kUsage;
   }
   o.edge_solver = solver == "lpsolve" ? EdgeSolver::LpSolve : EdgeSolver::Dijkstra;
+  using FF = FlowDomainOptions::FarField;
+  o.load.domain.farfield = farfield == "sphere" ? FF::Sphere : farfield == "box" ? FF::Box : FF::None;
+  o.load.domain.symmetry_axis = symmetry == "none" ? -1 : symmetry[0] - 'x';
+  o.load.domain.symmetry_at_given = at->count() > 0;
   for (const SizingOption& opt : sizing_options()) {
     if (opt.set) opt.set(o.sizing, words[opt.key]);
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);

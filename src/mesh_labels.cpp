@@ -28,6 +28,7 @@ MeshLabels label_faces(const Model& model) {
     labels.face_marker[f - 1] = marker;
     labels.markers.emplace(marker, m);
   }
+  labels.holes = model.info().domain.inside_points;
   return labels;
 }
 

@@ -23,6 +23,9 @@ struct MeshLabels {
   // field and two past them for the symmetry plane.
   std::vector<int> face_marker;
   std::map<int, Marker> markers;  // every marker a face carries
+  // A point inside each body a far field surrounds: the holes a volume
+  // mesher leaves empty (TetGen's hole list).
+  std::vector<Vec3> holes;
 
   int marker_of(int face) const {
     return face >= 1 && face <= static_cast<int>(face_marker.size()) ? face_marker[face - 1] : face;

@@ -91,12 +91,47 @@ void write_stl(const std::string& path, const SurfaceMesh& m) {
   if (!out) throw Error("cannot write '" + path + "'");
 }
 
+// Medit (Mmg and many adaptation loops): triangles carry their marker as reference.
+void write_medit(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write '" + path + "'");
+  out.precision(17);
+  out << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << m.xyz.size() << "\n";
+  for (const Vec3& p : m.xyz) out << p.x() << " " << p.y() << " " << p.z() << " 0\n";
+  out << "Triangles\n" << m.tris.size() << "\n";
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    out << m.tris[t][0] + 1 << " " << m.tris[t][1] + 1 << " " << m.tris[t][2] + 1 << " "
+        << labels.marker_of(m.tri_face[t]) << "\n";
+  out << "End\n";
+  if (!out) throw Error("cannot write '" + path + "'");
+}
+
+// TetGen's surface mesh (.smesh): facets with their marker as boundary
+// marker, and a hole inside each body the far field surrounds.
+void write_smesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write '" + path + "'");
+  out.precision(17);
+  out << "# sizemesh surface mesh: nodes, facets with boundary markers, holes, regions\n";
+  out << m.xyz.size() << " 3 0 0\n";
+  for (size_t i = 0; i < m.xyz.size(); ++i) out << i + 1 << " " << m.xyz[i].x() << " " << m.xyz[i].y() << " " << m.xyz[i].z() << "\n";
+  out << m.tris.size() << " 1\n";
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    out << "3 " << m.tris[t][0] + 1 << " " << m.tris[t][1] + 1 << " " << m.tris[t][2] + 1 << " "
+        << labels.marker_of(m.tri_face[t]) << "\n";
+  out << labels.holes.size() << "\n";
+  for (size_t h = 0; h < labels.holes.size(); ++h)
+    out << h + 1 << " " << labels.holes[h].x() << " " << labels.holes[h].y() << " " << labels.holes[h].z() << "\n";
+  out << "0\n";
+  if (!out) throw Error("cannot write '" + path + "'");
+}
+
 }  // namespace
 
 void check_mesh_format(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext != ".vtu" && ext != ".msh" && ext != ".stl" && ext != ".cgns")
-    throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh, .stl or .cgns)");
+  if (ext != ".vtu" && ext != ".msh" && ext != ".stl" && ext != ".cgns" && ext != ".mesh" && ext != ".smesh")
+    throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh, .stl, .cgns, .mesh or .smesh)");
 }
 
 void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels,
@@ -104,6 +139,8 @@ void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels&
   const std::string ext = extension(path);
   if (ext == ".msh") return write_msh(path, m, labels);
   if (ext == ".cgns") return write_cgns(path, m, labels);
+  if (ext == ".mesh") return write_medit(path, m, labels);
+  if (ext == ".smesh") return write_smesh(path, m, labels);
   if (ext == ".stl") return write_stl(path, m);
   std::vector<double> dim(m.node_dim.begin(), m.node_dim.end()), entity(m.node_entity.begin(), m.node_entity.end());
   std::vector<double> source_ids(m.tri_face.size());

@@ -5,6 +5,8 @@
 //         of its source face ("face_<id>": the sewn model's face it came from)
 //   .stl  binary STL
 //   .cgns CGNS (src/cgns_writer.h)
+//   .mesh Medit (Mmg): triangles referenced by marker
+//   .smesh TetGen: facets with boundary markers, and holes inside the bodies a far field surrounds
 #pragma once
 
 #include <string>

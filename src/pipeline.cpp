@@ -37,6 +37,7 @@ void check_triangle_budget(const TriangleEstimate& e, double max_triangles, cons
     case Limit::Thickness: option = "--gap-side fluid, --mu-d or --h-min"; break;
     case Limit::User: option = "the config's local sizes"; break;
     case Limit::HMin: option = "--h-min"; break;
+    case Limit::FarField: option = "--farfield-h"; break;
   }
   std::ostringstream msg;
   msg << std::setprecision(3) << "the size map asks for about " << e.total << " triangles, more than --max-triangles "
@@ -107,6 +108,12 @@ int run(const RunOptions& o) {
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(params, source_face, model.info().sewn_faces);              // sizing/
+  const FlowDomain& domain = model.info().domain;
+  for (int f = 1; f <= model.num_faces(); ++f)  // the far field and the symmetry plane grade up to their own size
+    if (model.boundary(f) != Boundary::Wall && domain.element_size > 0) {
+      params.face_h_max[f] = domain.element_size;
+      params.edge_graded_faces.insert(f);
+    }
   if (model.info().entities_failed > 0)
     std::cerr << "sizemesh: warning: " << model.info().entities_failed
               << " entities could not be read and are left out of the mesh; first: " << model.info().first_failure

@@ -40,6 +40,16 @@ nlohmann::json report_json(const RunReport& r) {
                       {"faces_split_at_folds", prep.faces_split_at_folds},
                       {"faces_before", prep.faces_before},
                       {"faces_after", prep.faces_after}};
+  const FlowDomain& d = info.domain;
+  j["domain"] = {{"farfield", d.farfield},
+                 {"farfield_size", d.size},
+                 {"farfield_element_size", d.element_size},
+                 {"center", {d.center.x(), d.center.y(), d.center.z()}},
+                 {"farfield_faces", d.farfield_faces},
+                 {"symmetry_axis", d.symmetry_axis < 0 ? std::string() : std::string(1, 'x' + d.symmetry_axis)},
+                 {"symmetry_at", d.symmetry_at},
+                 {"symmetry_faces", d.symmetry_faces},
+                 {"bodies_inside", d.inside_points.size()}};
   j["background"] = {{"triangles", r.background_triangles},
                      {"vertices", r.background_vertices},
                      {"tessellation_vertices", r.refinement.vertices_before},
