@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(cmake ninja-build g++ pkg-config
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
   libvtk9-dev liblpsolve55-dev libeigen3-dev libtbb-dev catch2 libcli11-dev nlohmann-json3-dev libmuparser-dev
-  libboost-dev libcgal-dev tetgen python3-meshio)
+  libboost-dev libcgal-dev tetgen python3-meshio gmsh)
 
 install_missing() {
   local missing=()
