@@ -20,7 +20,8 @@ find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel IOXML)
 
 # lp_solve 5.5: the reference LP solver for the edge-gradation problem (paper Eq. 12).
 find_path(LPSOLVE_INCLUDE_DIR lp_lib.h PATH_SUFFIXES lpsolve REQUIRED)
-find_library(LPSOLVE_LIBRARY NAMES lpsolve55 REQUIRED PATH_SUFFIXES lp_solve)
+# The position-independent archive: it also goes into the Python module.
+find_library(LPSOLVE_LIBRARY NAMES lpsolve55_pic lpsolve55 REQUIRED PATH_SUFFIXES lp_solve)
 add_library(sizemesh::lpsolve INTERFACE IMPORTED)
 target_include_directories(sizemesh::lpsolve INTERFACE ${LPSOLVE_INCLUDE_DIR})
 target_link_libraries(sizemesh::lpsolve INTERFACE ${LPSOLVE_LIBRARY} dl colamd)

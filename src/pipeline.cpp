@@ -49,12 +49,13 @@ void check_triangle_budget(const TriangleEstimate& e, double max_triangles, cons
 // Triangles crossing within a face or across a shared curve: the front never
 // makes them where the CAD is sound, so they point at faces that cross
 // themselves or their neighbours.
-void warn_local_intersections(const MeshQuality& q) {
+void warn_local_intersections(const MeshQuality& q, const WarningSink& warn) {
   if (q.local_self_intersections == 0) return;
-  std::cerr << "sizemesh: warning: " << q.local_self_intersections
-            << " pairs of triangles intersect within a face or across a shared curve (faces";
-  for (const auto& [a, b] : q.intersecting_faces) std::cerr << " " << a << (a == b ? "" : "/" + std::to_string(b));
-  std::cerr << "): the CAD surfaces there likely cross\n";
+  std::ostringstream msg;
+  msg << q.local_self_intersections << " pairs of triangles intersect within a face or across a shared curve (faces";
+  for (const auto& [a, b] : q.intersecting_faces) msg << " " << a << (a == b ? "" : "/" + std::to_string(b));
+  msg << "): the CAD surfaces there likely cross";
+  warn(msg.str());
 }
 
 // Shares of the triangles and of the area whose target size is within 5% of h_min.
@@ -70,21 +71,100 @@ void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, doub
 }
 
 // One warning line when h_min sets more than 5% of the triangles.
-void warn_h_min(const RunReport& r, double h_min) {
-  if (r.at_h_min_share > 0.05)
-    std::cerr << std::setprecision(3) << "sizemesh: warning: " << 100 * r.at_h_min_share << "% of the triangles ("
-              << 100 * r.at_h_min_area_share << "% of the area) are sized at h_min " << h_min
-              << ": lower --h-min to resolve those regions, or raise it for fewer triangles\n";
+void warn_h_min(const RunReport& r, double h_min, const WarningSink& warn) {
+  if (!(r.at_h_min_share > 0.05)) return;
+  std::ostringstream msg;
+  msg << std::setprecision(3) << 100 * r.at_h_min_share << "% of the triangles (" << 100 * r.at_h_min_area_share
+      << "% of the area) are sized at h_min " << h_min
+      << ": lower --h-min to resolve those regions, or raise it for fewer triangles";
+  warn(msg.str());
 }
 
-// The union is what makes the surface closed: say when it could not be kept.
-void warn_preparation(const Preparation& p) {
-  if (!p.fallback.empty())
-    std::cerr << "sizemesh: warning: geometry preparation incomplete (" << p.fallback
-              << "): those components are meshed where they lie\n";
+// The far field and the symmetry plane grade up to their own size, along
+// background edges only (sizing/params.h).
+void size_domain_faces(const Model& model, SizingParams& params) {
+  const FlowDomain& domain = model.info().domain;
+  if (!(domain.element_size > 0)) return;
+  for (int f = 1; f <= model.num_faces(); ++f)
+    if (model.boundary(f) != Boundary::Wall) {
+      params.face_h_max[f] = domain.element_size;
+      params.edge_graded_faces.insert(f);
+    }
 }
+
+void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning: " << line << "\n"; }
 
 }  // namespace
+
+std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& warn_in) {
+  const WarningSink warn = [&](const std::string& line) {
+    if (warn_in) warn_in(line);
+  };
+  auto r = std::make_unique<RunResult>(o.verbose);
+  RunReport& report = r->report;
+  r->params = o.sizing;
+  if (!o.config.empty()) apply_config(o.config, o.sizing_from_cli, r->params);
+  const CadFile cad = read_cad(o.input, o.load);                               // geometry/
+  r->clock.lap("load");
+  r->model.emplace(prepare_model(cad, o.load));                                // geometry/prepare
+  const Model& model = *r->model;
+  r->clock.lap("prepare");
+  const ModelInfo& info = model.info();
+  if (!info.preparation.fallback.empty())  // the union is what makes the surface closed
+    warn("geometry preparation incomplete (" + info.preparation.fallback + "): those components are meshed where they lie");
+  std::vector<int> source_face(model.num_faces());
+  for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
+  remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/
+  size_domain_faces(model, r->params);
+  if (info.entities_failed > 0)
+    warn(std::to_string(info.entities_failed) + " entities could not be read and are left out of the mesh; first: " +
+         info.first_failure);
+  r->bg = build_background_mesh(model, o.tessellation);                      // geometry/ (paper 3.1)
+  r->clock.lap("background");
+  r->sizes = refine_background(model, r->bg, r->params, info.diagonal(),     // sizing/   (3.2, 3.4)
+                               &report.refinement);
+  r->clock.lap("initial_sizes");
+  report.smoothing = smooth(r->bg, r->sizes, o.edge_solver);                 // sizing/   (3.3, Eq. 11-12)
+  r->clock.lap("smoothing");
+  r->estimate = estimate_triangles(r->bg, r->sizes.h, r->sizes.limit, model.num_faces());  // sizing/
+  report.estimated_triangles = r->estimate.total;
+  report.model = &model;
+  report.background_triangles = r->bg.num_triangles();
+  report.background_vertices = r->bg.num_vertices();
+  report.sizes = &r->sizes;
+  if (o.verbose) {
+    std::cout << "model: " << info.faces << " faces, " << info.curves << " curves; background mesh "
+              << r->bg.num_triangles() << " triangles, " << r->bg.num_vertices() << " vertices ("
+              << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
+              << " edges split in " << report.refinement.rounds << " rounds)\n";
+    print_sizing_summary(r->bg, r->sizes, report.smoothing, std::cout);
+    std::cout << "estimate: about " << static_cast<long long>(r->estimate.total + 0.5) << " triangles\n";
+  }
+  return r;
+}
+
+void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn_in) {
+  const WarningSink warn = [&](const std::string& line) {
+    if (warn_in) warn_in(line);
+  };
+  check_triangle_budget(r.estimate, r.params.max_triangles, r.sizes);
+  const Model& model = *r.model;
+  r.query.emplace(size_query_for(model, r.bg, r.sizes.h));                  // sizing/ (4.2)
+  MeshOptions meshing = o.meshing;
+  meshing.expected_triangles = r.estimate.per_face;
+  meshing.on_face_done = [&r](int done, int total) { r.clock.faces(done, total); };
+  r.mesh = mesh_surface(model, *r.query, meshing);                          // mesher/ (4.1)
+  r.clock.lap("meshing");
+  r.report.queries = r.query->stats();
+  r.report.mesh = &r.mesh;
+  r.report.quality = mesh_quality(r.mesh, model, *r.query);
+  r.clock.lap("quality");
+  r.target = target_sizes(r.mesh, *r.query);
+  measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
+  for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
+  warn_local_intersections(r.report.quality, warn);
+  warn_h_min(r.report, r.sizes.h_min, warn);
+}
 
 int run(const RunOptions& o) {
   // Refuse what cannot succeed before any long work starts.
@@ -95,78 +175,25 @@ int run(const RunOptions& o) {
       throw Error("the background mesh is written as .vtu only, got '" + o.background + "'");
   }
   if (!o.report.empty()) check_writable(o.report);
-  SizingParams params = o.sizing;
-  if (!o.config.empty()) apply_config(o.config, o.sizing_from_cli, params);
-
-  RunReport report;
-  Progress clock(o.verbose, report.seconds);
-  const CadFile cad = read_cad(o.input, o.load);                               // geometry/
-  clock.lap("load");
-  Model model = prepare_model(cad, o.load);                                    // geometry/prepare
-  clock.lap("prepare");
-  warn_preparation(model.info().preparation);
-  std::vector<int> source_face(model.num_faces());
-  for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
-  remap_face_ids(params, source_face, model.info().sewn_faces);              // sizing/
-  const FlowDomain& domain = model.info().domain;
-  for (int f = 1; f <= model.num_faces(); ++f)  // the far field and the symmetry plane grade up to their own size
-    if (model.boundary(f) != Boundary::Wall && domain.element_size > 0) {
-      params.face_h_max[f] = domain.element_size;
-      params.edge_graded_faces.insert(f);
-    }
-  if (model.info().entities_failed > 0)
-    std::cerr << "sizemesh: warning: " << model.info().entities_failed
-              << " entities could not be read and are left out of the mesh; first: " << model.info().first_failure
-              << "\n";
-  BackgroundMesh bg = build_background_mesh(model, o.tessellation);            // geometry/ (paper 3.1)
-  clock.lap("background");
-  SizeMap h = refine_background(model, bg, params, model.info().diagonal(),   // sizing/   (3.2, 3.4)
-                                &report.refinement);
-  clock.lap("initial_sizes");
-  report.smoothing = smooth(bg, h, o.edge_solver);                             // sizing/   (3.3, Eq. 11-12)
-  clock.lap("smoothing");
-  const TriangleEstimate estimate = estimate_triangles(bg, h.h, h.limit, model.num_faces());  // sizing/
-  report.estimated_triangles = estimate.total;
-  report.model = &model;
-  report.background_triangles = bg.num_triangles();
-  report.background_vertices = bg.num_vertices();
-  report.sizes = &h;
-  if (o.verbose) {
-    std::cout << "model: " << model.info().faces << " faces, " << model.info().curves << " curves; background mesh "
-              << bg.num_triangles() << " triangles, " << bg.num_vertices() << " vertices ("
-              << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
-              << " edges split in " << report.refinement.rounds << " rounds)\n";
-    print_sizing_summary(bg, h, report.smoothing, std::cout);
-    std::cout << "estimate: about " << static_cast<long long>(estimate.total + 0.5) << " triangles\n";
-  }
-  if (!o.background.empty()) write_background_sizes(o.background, bg, h);
-  if (!o.output.empty()) check_triangle_budget(estimate, params.max_triangles, h);
-
-
-  SurfaceMesh mesh;
+  // Warnings about the mesh come after its summary; the others at once.
+  std::vector<std::string> later;
+  bool meshing = false;
+  const WarningSink warn = [&](const std::string& line) {
+    if (meshing) later.push_back(line);
+    else print_to_stderr(line);
+  };
+  std::unique_ptr<RunResult> r = size_model(o, warn);
+  if (!o.background.empty()) write_background_sizes(o.background, r->bg, r->sizes);
   if (!o.output.empty()) {
-    const SizeQuery query = size_query_for(model, bg, h.h);  // sizing/ (4.2)
-    MeshOptions meshing = o.meshing;
-    meshing.expected_triangles = estimate.per_face;
-    meshing.on_face_done = [&clock](int done, int total) { clock.faces(done, total); };
-    mesh = mesh_surface(model, query, meshing);                             // mesher/ (4.1)
-    clock.lap("meshing");
-    report.queries = query.stats();
-    report.mesh = &mesh;
-    report.quality = mesh_quality(mesh, model, query);
-    clock.lap("quality");
-    const std::vector<double> target = target_sizes(mesh, query);
-    write_mesh(o.output, mesh, label_faces(model), report.quality.min_angle, target);
-    clock.lap("output");
-    measure_h_min(mesh, target, h.h_min, report);
-    if (o.verbose) print_mesh_summary(report, std::cout);
+    meshing = true;
+    mesh_model(*r, o, warn);
+    write_mesh(o.output, r->mesh, r->labels(), r->report.quality.min_angle, r->target);
+    r->clock.lap("output");
+    if (o.verbose) print_mesh_summary(r->report, std::cout);
   }
-  if (!o.report.empty()) write_report(o.report, report);
-  for (const auto& f : mesh.failures)
-    std::cerr << "sizemesh: warning: face " << f.face << " was not meshed: " << f.reason << "\n";
-  warn_local_intersections(report.quality);
-  if (report.mesh) warn_h_min(report, h.h_min);
-  return mesh.failures.empty() ? kOk : kPartial;
+  if (!o.report.empty()) write_report(o.report, r->report);
+  for (const auto& line : later) print_to_stderr(line);
+  return r->exit_code();
 }
 
 }  // namespace sizemesh

@@ -1,14 +1,23 @@
 // The paper's flow from CAD file to mesh, one named step after another.
 #pragma once
 
+#include <functional>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
 #include "mesher/surface_mesh.h"
 #include "sizing/params.h"
+#include "sizing/size_query.h"
 #include "sizing/smooth.h"
+#include "sizing/triangle_estimate.h"
+#include "src/mesh_labels.h"
+#include "src/progress.h"
+#include "src/report.h"
 
 namespace sizemesh {
 
@@ -30,8 +39,39 @@ struct RunOptions {
 // Exit codes of the sizemesh command.
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kPartial = 3 };
 
-// Runs the whole pipeline; throws Error on bad input. Returns the exit code
-// (kPartial when some faces could not be meshed; the rest is still written).
+// Everything one run makes, kept in one place: the report points into it.
+struct RunResult {
+  explicit RunResult(bool verbose) : clock(verbose, report.seconds) {}
+  RunReport report;
+  Progress clock;
+  std::optional<Model> model;
+  SizingParams params;           // the options with the config applied, face ids remapped
+  BackgroundMesh bg;
+  SizeMap sizes;
+  TriangleEstimate estimate;
+  std::optional<SizeQuery> query;  // once meshed
+  SurfaceMesh mesh;
+  std::vector<double> target;    // per mesh node: the size map's size there
+  std::vector<std::string> warnings;  // one line each, without the "sizemesh: warning: " prefix
+  bool meshed() const { return report.mesh != nullptr; }
+  MeshLabels labels() const { return label_faces(*model); }
+  int exit_code() const { return mesh.failures.empty() ? kOk : kPartial; }
+};
+
+// Called with each warning as it arises (the command prints it at once).
+using WarningSink = std::function<void(const std::string&)>;
+
+// Paper 3: loading, preparation, background mesh, initial sizes and smoothing;
+// prints the sizing summary when verbose. Throws Error on bad input.
+std::unique_ptr<RunResult> size_model(const RunOptions& options, const WarningSink& warn = {});
+
+// Paper 4: the size query and the surface mesh, its quality and target sizes.
+// Throws Error when the size map asks for more than --max-triangles.
+void mesh_model(RunResult& r, const RunOptions& options, const WarningSink& warn = {});
+
+// The sizemesh command: both stages and every file asked for. Returns the
+// exit code (kPartial when some faces could not be meshed; the rest is still
+// written).
 int run(const RunOptions& options);
 
 }  // namespace sizemesh
