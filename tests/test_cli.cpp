@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sizing/options.h"
+#include "src/cli_options.h"
 #include "tests/cli_runner.h"
 #include "tests/test_models.h"
 
@@ -80,6 +81,17 @@ TEST_CASE("help documents every option and version prints the version") {
     CHECK(readme.find("| `" + opt.flag + "` | `" + opt.key + "` |") != std::string::npos);
   }
   CHECK(help.out.find("a flag given on the command line wins over the file") != std::string::npos);
+  // Every option the command line has (src/cli_options.cpp) is in the README.
+  CLI::App app;
+  RunCommandLine cl;
+  add_run_options(app, cl);
+  for (const CLI::Option* opt : app.get_options()) {
+    if (opt->get_lnames().empty()) continue;
+    const std::string flag = "--" + opt->get_lnames().front();
+    INFO(flag);
+    CHECK(readme.find(flag) != std::string::npos);
+    CHECK(help.out.find(flag) != std::string::npos);
+  }
   const auto version = test::run_sizemesh("--version");
   CHECK(version.status == 0);
   CHECK(version.out.rfind("sizemesh ", 0) == 0);
