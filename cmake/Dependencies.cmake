@@ -32,6 +32,13 @@ pkg_check_modules(MUPARSER REQUIRED IMPORTED_TARGET muparser)
 add_library(sizemesh::muparser INTERFACE IMPORTED)
 target_link_libraries(sizemesh::muparser INTERFACE PkgConfig::MUPARSER)
 
+# CGNS 3.4: writing .cgns files, the standard input of most CFD solvers.
+find_path(CGNS_INCLUDE_DIR cgnslib.h REQUIRED)
+find_library(CGNS_LIBRARY NAMES cgns REQUIRED)
+add_library(sizemesh::cgns INTERFACE IMPORTED)
+target_include_directories(sizemesh::cgns INTERFACE ${CGNS_INCLUDE_DIR})
+target_link_libraries(sizemesh::cgns INTERFACE ${CGNS_LIBRARY})
+
 # Boost.Multiprecision (headers): exact integers behind the geometric predicates
 # of the self-intersection check when floating point cannot decide.
 find_package(Boost 1.74 REQUIRED)

@@ -29,6 +29,7 @@ MeshLabels label_faces(const Model& model) {
     labels.markers.emplace(marker, m);
   }
   labels.holes = model.info().domain.inside_points;
+  labels.unit = model.info().unit;
   return labels;
 }
 

@@ -26,6 +26,7 @@ struct MeshLabels {
   // A point inside each body a far field surrounds: the holes a volume
   // mesher leaves empty (TetGen's hole list).
   std::vector<Vec3> holes;
+  std::string unit;  // the CAD file's length unit ("mm", "ft", ...; "unknown" when it has none)
 
   int marker_of(int face) const {
     return face >= 1 && face <= static_cast<int>(face_marker.size()) ? face_marker[face - 1] : face;
