@@ -129,7 +129,7 @@ TEST_CASE("the background mesh is written as .vtu with classification fields") {
   fs::remove(out);
 }
 
-TEST_CASE("a flag on the command line wins over the config file; the file's other keys still apply") {
+TEST_CASE("a flag on the command line wins over the config file, and the file's other keys still apply") {
   const fs::path dir = fs::temp_directory_path() / ("sizemesh_cfg_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ofstream(dir / "c.json") << R"({"h_min": 2.0, "h_max": 20.0, "beta": 1.3})";
