@@ -10,7 +10,7 @@ PACKAGES=(cmake ninja-build g++ pkg-config
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
   libvtk9-dev liblpsolve55-dev libeigen3-dev libtbb-dev catch2 libcli11-dev nlohmann-json3-dev libmuparser-dev
   libboost-dev libcgal-dev libcgns-dev cgns-convert tetgen python3-meshio gmsh
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-tqdm python3-distributed)
 
 install_missing() {
   local missing=()
