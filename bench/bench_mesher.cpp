@@ -19,6 +19,7 @@
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
+#include "tests/test_models.h"
 
 using namespace sizemesh;
 
@@ -71,10 +72,8 @@ int main(int argc, char** argv) {
     else files.push_back(argv[i]);
   }
   if (files.empty())
-    for (const char* f : {"onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp",
-                          "impeller_laufrad.stp", "cylinder_head_fins.stp", "steering_knuckle.stp",
-                          "d150_fuselage.igs", "f16_openvsp.stp"})
-      files.push_back(std::string(SIZEMESH_MODELS_DIR) + "/" + f);
+    for (const auto& m : sizemesh::test::shared_models())  // one list for tests and benches
+      files.push_back(std::string(SIZEMESH_MODELS_DIR) + "/" + m.file);
   std::printf("%-32s %-9s %6s %9s %8s %8s %10s %6s %6s %6s %5s %5s %5s %9s %6s %5s %5s\n", "model", "size",
               "faces", "tris", "t1[s]", "tN[s]", "tris/s(N)", "t1/tN", "<12", "<24", "bnd", "nonm", "inv",
               "area_err", "conf", "fail", "3d");

@@ -18,6 +18,7 @@
 #include "sizing/lp_smooth.h"
 #include "sizing/refine_background.h"
 #include "sizing/smooth.h"
+#include "tests/test_models.h"
 
 using namespace sizemesh;
 
@@ -28,12 +29,11 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 int main(int argc, char** argv) {
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const std::string dir = argc > 1 ? argv[1] : SIZEMESH_MODELS_DIR;
-  const char* files[] = {"onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp",
-                         "impeller_laufrad.stp", "cylinder_head_fins.stp", "steering_knuckle.stp",
-                         "d150_fuselage.igs", "f16_openvsp.stp"};
+  std::vector<std::string> files;  // the test models (tests/test_models.h): one list for tests and benches
+  for (const auto& m : sizemesh::test::shared_models()) files.push_back(m.file);
   std::printf("%-32s %8s %8s %8s %8s %8s %8s %8s %8s %9s %9s %8s\n", "model", "load s", "tess s", "init s",
               "refine s", "smooth s", "total s", "tess tri", "bg tris", "edge ms", "lp ms", "lp/exact");
-  for (const char* f : files) {
+  for (const std::string& f : files) {
     double t = now();
     Model model = load_model(dir + "/" + f);
     const double t_load = now() - t;
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     t = now();
     smooth_edges_lp(bg, m.edge_log_beta, h);
     const double t_lp = now() - t;
-    std::printf("%-32s %8.3f %8.3f %8.3f %8.3f %8.4f %8.3f %8d %8d %9.2f %9.1f %8.0f\n", f, t_load, t_tess, t_init,
+    std::printf("%-32s %8.3f %8.3f %8.3f %8.3f %8.4f %8.3f %8d %8d %9.2f %9.1f %8.0f\n", f.c_str(), t_load, t_tess, t_init,
                 t_refine, t_smooth, t_load + t_tess + t_refine + t_smooth, tess_tris, bg.num_triangles(), 1e3 * t_edge,
                 1e3 * t_lp, t_lp / t_edge);
   }

@@ -17,10 +17,9 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from models import MODELS  # noqa: E402  (bench/models.py: the one list)
 ROOT = os.path.dirname(HERE)
-MODELS = ["onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp",
-          "impeller_laufrad.stp", "cylinder_head_fins.stp", "steering_knuckle.stp",
-          "d150_fuselage.igs", "f16_openvsp.stp", "manta2_openvsp.stp"]
 
 
 def run(binary, model, threads, tmp):

@@ -33,10 +33,9 @@ One thread for every tool.
 import argparse, json, math, os, subprocess, sys, tempfile, time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from models import MODELS  # noqa: E402  (bench/models.py: the one list)
 ROOT = os.path.dirname(HERE)
-MODELS = ["onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp",
-          "cylinder_head_fins.stp", "impeller_laufrad.stp", "steering_knuckle.stp",
-          "d150_fuselage.igs", "f16_openvsp.stp"]
 GMSH_UNITS = {"mm": "MM", "m": "M", "cm": "CM", "ft": "FT", "in": "INCH", "um": "UM", "km": "KM"}
 
 GMSH_SCRIPT = r"""

@@ -4,35 +4,25 @@ columns of `sizemesh batch`). Options after -- go to every file's run.
 
     /usr/bin/python3 examples/batch.py models/ 'more/*.stp' -o out --jobs 2 [-- --phi-c 10]
 """
-import argparse
 import concurrent.futures
 import os
 import sys
 
 from tqdm import tqdm
 
-from batch_common import cad_files, find_sizemesh, mesh_one, stems, write_summary
+from batch_common import cad_files, find_sizemesh, mesh_one, parse, stems, write_summary
 
 
 def main():
-    argv = sys.argv[1:]
-    options = argv[argv.index("--") + 1:] if "--" in argv else []
-    argv = argv[:argv.index("--")] if "--" in argv else argv
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("inputs", nargs="+")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("-j", "--jobs", type=int, default=os.cpu_count())
-    ap.add_argument("--format", default="vtu", choices=["vtu", "msh", "stl", "cgns", "mesh", "smesh"])
-    ap.add_argument("--timeout", type=float, default=600)
-    ap.add_argument("--sizemesh", help="the sizemesh command (default: this repository's build)")
-    a = ap.parse_args(argv)
+    a = parse(sys.argv[1:], __doc__,
+              lambda ap: ap.add_argument("-j", "--jobs", type=int, default=os.cpu_count(), help="files at once"))
     sizemesh = find_sizemesh(a.sizemesh)
     files = cad_files(a.inputs)
     names = stems(files)
     rows = [None] * len(files)
     # Threads are enough: each file runs in a process of its own.
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-        futures = {pool.submit(mesh_one, sizemesh, f, a.output, s, a.format, a.timeout, options): i
+        futures = {pool.submit(mesh_one, sizemesh, f, a.output, s, a.format, a.timeout, a.options): i
                    for i, (f, s) in enumerate(zip(files, names))}
         with tqdm(total=len(files), unit="file") as bar:
             for done in concurrent.futures.as_completed(futures):

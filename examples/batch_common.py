@@ -2,6 +2,7 @@
 files, meshing one file with the sizemesh command in a process of its own,
 and the summary.csv row it gives (the same columns as `sizemesh batch`).
 """
+import argparse
 import csv
 import glob
 import json
@@ -14,6 +15,23 @@ import time
 CAD = (".step", ".stp", ".iges", ".igs", ".brep")
 COLUMNS = ["file", "status", "exit_code", "seconds", "peak_mb", "triangles", "nodes", "bad_below_12deg",
            "avoidable_below_12deg", "failed_faces", "message"]
+
+
+def parse(argv, doc, more=None):
+    """The arguments both scripts take; those after -- go to every file's run."""
+    options = argv[argv.index("--") + 1:] if "--" in argv else []
+    argv = argv[:argv.index("--")] if "--" in argv else argv
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    ap.add_argument("inputs", nargs="+", help="CAD files, folders or glob patterns")
+    ap.add_argument("-o", "--output", required=True, help="folder for the meshes and summary.csv")
+    ap.add_argument("--format", default="vtu", choices=["vtu", "msh", "stl", "cgns", "mesh", "smesh"])
+    ap.add_argument("--timeout", type=float, default=600, help="seconds a file may take")
+    ap.add_argument("--sizemesh", help="the sizemesh command (default: this repository's build)")
+    if more:
+        more(ap)
+    a = ap.parse_args(argv)
+    a.options = options
+    return a
 
 
 def find_sizemesh(given=None):

@@ -10,28 +10,21 @@ started on a Slurm cluster by dask-jobqueue (SLURMCluster(...).scheduler_address
 the workers must see the same paths (a shared file system) and the sizemesh
 command (--sizemesh).
 """
-import argparse
 import os
 import sys
 
 from dask.distributed import Client, LocalCluster, as_completed
 
-from batch_common import cad_files, find_sizemesh, mesh_one, stems, write_summary
+from batch_common import cad_files, find_sizemesh, mesh_one, parse, stems, write_summary
+
+
+def cluster_options(ap):
+    ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a local cluster)")
+    ap.add_argument("--workers", type=int, default=2, help="workers of the local cluster")
 
 
 def main():
-    argv = sys.argv[1:]
-    options = argv[argv.index("--") + 1:] if "--" in argv else []
-    argv = argv[:argv.index("--")] if "--" in argv else argv
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("inputs", nargs="+")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a local cluster)")
-    ap.add_argument("--workers", type=int, default=2, help="workers of the local cluster")
-    ap.add_argument("--format", default="vtu", choices=["vtu", "msh", "stl", "cgns", "mesh", "smesh"])
-    ap.add_argument("--timeout", type=float, default=600)
-    ap.add_argument("--sizemesh", help="the sizemesh command (default: this repository's build)")
-    a = ap.parse_args(argv)
+    a = parse(sys.argv[1:], __doc__, cluster_options)
     sizemesh = find_sizemesh(a.sizemesh)
     files = [os.path.abspath(f) for f in cad_files(a.inputs)]
     names = stems(files)
@@ -43,7 +36,7 @@ def main():
                                dashboard_address=None)
         client = Client(cluster)
     with client:
-        futures = [client.submit(mesh_one, sizemesh, f, outdir, s, a.format, a.timeout, options, pure=False)
+        futures = [client.submit(mesh_one, sizemesh, f, outdir, s, a.format, a.timeout, a.options, pure=False)
                    for f, s in zip(files, names)]
         index = {f.key: i for i, f in enumerate(futures)}
         rows = [None] * len(files)

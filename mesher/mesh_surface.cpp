@@ -1,12 +1,12 @@
 #include "mesher/mesh_surface.h"
 
 #include <atomic>
-#include <chrono>
 #include <memory>
 
 #include <tbb/task_arena.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/stopwatch.h"
 #include "mesher/advancing_front.h"
 #include "mesher/discretise_curves.h"
 #include "mesher/face_boundary.h"
@@ -15,11 +15,6 @@
 
 namespace sizemesh {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Leftover fronts closed by ear clipping: small ones after any strategy,
 // larger ones only to avoid a hole after the last.
@@ -45,7 +40,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   FaceResult r;
   FaceSurface fs(g, h, face);
   try {
-    const auto t0 = Clock::now();
+    Stopwatch clock;
     const FaceMesh raw = face_boundary(g, cm, fs);
     FaceMesh steady = raw;
     const bool curled = steady_boundary_normals(steady, fs) > 0;
@@ -90,13 +85,12 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
       r.lenient = a.lenient;
       if (fr.ok) break;
     }
-    r.seconds_front = seconds_since(t0);
+    r.seconds_front = clock.lap();
     if (!fr.ok) {
       r.reason = fr.reason;
     } else {
-      const auto t1 = Clock::now();
       optimise(r.mesh, fs, o.optimise_passes);
-      r.seconds_optimise = seconds_since(t1);
+      r.seconds_optimise = clock.lap();
       r.ok = true;
     }
   } catch (const std::exception& e) {
@@ -113,7 +107,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
 SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
   SurfaceMesh out;
   // 1. Curves: one unit mesh per curve (paper 2.1), shared by its faces.
-  auto t0 = Clock::now();
+  Stopwatch clock;
   CurveMesh cm;
   try {
     cm = discretise_curves(g, h);
@@ -122,11 +116,10 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
       out.failures.push_back({f, "the curves could not be discretised (geometry kernel error)"});
     return out;
   }
-  out.stats.seconds_curves = seconds_since(t0);
+  out.stats.seconds_curves = clock.lap();
   out.stats.size_queries += cm.size_queries;
 
   // 2. Faces: independent once the curves are fixed.
-  t0 = Clock::now();
   const int nf = g.num_faces();
   std::vector<FaceResult> faces(nf + 1);
   std::atomic<int> done{0};
@@ -134,7 +127,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
     faces[f] = mesh_face(g, h, cm, f, o);
     if (o.on_face_done) o.on_face_done(++done, nf);
   });
-  out.stats.seconds_faces = seconds_since(t0);
+  out.stats.seconds_faces = clock.lap();
 
   // 3. Assembly in face order: shared nodes by index, inner nodes appended.
   out.xyz = std::move(cm.xyz);

@@ -1,8 +1,8 @@
 #include "sizing/initial_sizes.h"
 
-#include <chrono>
 #include <cmath>
 
+#include "geometry/stopwatch.h"
 #include "sizing/curvature_size.h"
 #include "sizing/proximity_size.h"
 #include "sizing/user_size.h"
@@ -11,9 +11,6 @@ namespace sizemesh {
 
 namespace {
 
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 double face_beta(const SizingParams& p, int face) {
   auto it = p.face_beta.find(face);
@@ -57,17 +54,15 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   SizeMap m;
   m.h_min = p.resolved_h_min(diagonal);
   m.h_max = p.resolved_h_max(diagonal);
-  double t = now();
+  Stopwatch clock;
   m.h_curvature = curvature_sizes(g, bg, p);
-  m.t_curvature = now() - t;
-  t = now();
+  m.t_curvature = clock.lap();
   std::vector<double> h_face(bg.num_vertices(), kNoLimit), h_curve(bg.num_vertices(), kNoLimit);
   if (p.proximity) {
     h_face = face_proximity_sizes(g, bg, p);
     h_curve = curve_length_sizes(g, bg);
   }
-  m.t_proximity = now() - t;
-  t = now();
+  m.t_proximity = clock.lap();
   GapSizes h_gap(bg.num_vertices());
   if (p.proximity && p.local_proximity) {
     double mu_max = p.mu_d;
@@ -75,10 +70,9 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
     // Faces closer than the sewing tolerance (1e-5 of the diagonal) touch.
     h_gap = gap_sizes(g, bg, p, m.h_max * mu_max, 1e-5 * diagonal);
   }
-  m.t_gap = now() - t;
-  t = now();
+  m.t_gap = clock.lap();
   m.h_user = user_sizes(g, bg, p);
-  m.t_user = now() - t;
+  m.t_user = clock.lap();
 
   const int nv = bg.num_vertices();
   m.h_cap = size_caps(bg, p, m.h_max);

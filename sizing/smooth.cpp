@@ -1,7 +1,8 @@
 #include "sizing/smooth.h"
 
+#include "geometry/stopwatch.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <queue>
 
@@ -11,9 +12,6 @@ namespace sizemesh {
 
 namespace {
 
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Relative slack kept below a bound so that round-off never leaves a size above it.
 constexpr double kSlack = 1e-12;
@@ -173,18 +171,18 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
   m.h = m.h_initial;
   const int nt = bg.num_triangles();
   for (int t = 0; t < nt; ++t) s.degenerate_triangles += triangle_gradient(bg, m.h, t) < 0;
-  double t0 = now();
+  Stopwatch clock;
   const Adjacency adj(bg, m.edge_log_beta);
   if (solver == EdgeSolver::LpSolve) smooth_edges_lp(bg, m.edge_log_beta, m.h);
   else propagate(bg, adj, all_vertices(bg), m.h, nullptr);
-  s.t_edge += now() - t0;
+  s.t_edge += clock.lap();
   // Alternate triangle corrections (Eq. 11) and edge propagation (Eq. 12),
   // each round looking only at triangles around the vertices that changed.
   std::vector<int> work(nt);
   for (int t = 0; t < nt; ++t) work[t] = t;
   std::vector<int> stamp(nt, -1);
   for (int round = 0; !work.empty(); ++round) {
-    t0 = now();
+    clock.lap();
     std::vector<int> changed;
     for (int t : work) {
       const double lb = m.tri_log_beta[t];
@@ -198,13 +196,13 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
         if (m.h[tr[k]] < before[k]) changed.push_back(tr[k]);
       ++s.triangle_corrections;
     }
-    s.t_triangle += now() - t0;
+    s.t_triangle += clock.lap();
     s.rounds = round + 1;
     if (changed.empty()) break;
-    t0 = now();
+    clock.lap();
     std::vector<int> touched = changed;
     propagate(bg, adj, changed, m.h, &touched);
-    s.t_edge += now() - t0;
+    s.t_edge += clock.lap();
     work.clear();
     for (int v : touched)
       for (int i = adj.tri_start[v]; i < adj.tri_start[v + 1]; ++i)

@@ -22,6 +22,7 @@
 #include <sstream>
 #include <thread>
 
+#include "geometry/stopwatch.h"
 #include "src/cli_options.h"
 
 extern char** environ;
@@ -30,15 +31,14 @@ namespace sizemesh {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
-volatile std::sig_atomic_t g_stop = 0;  // SIGINT or SIGTERM arrived
-void on_signal(int) { g_stop = 1; }
+volatile std::sig_atomic_t g_stop = 0;  // the SIGINT or SIGTERM that arrived, 0 when none
+void on_signal(int sig) { g_stop = sig; }
 
 struct Job {
   std::string input, stem;
   pid_t pid = -1;
-  Clock::time_point start;
+  Stopwatch clock;  // since the run started
   // The row of summary.csv.
   std::string status = "not run";
   int exit_code = -1;
@@ -104,7 +104,7 @@ pid_t start(const Job& j, const fs::path& out, const std::string& format, const 
 
 // The row of a finished run, from its exit, its report and its log.
 void finish(Job& j, int wstatus, const rusage& usage, bool timed_out, const fs::path& out) {
-  j.seconds = std::chrono::duration<double>(Clock::now() - j.start).count();
+  j.seconds = j.clock.seconds();
   j.peak_mb = usage.ru_maxrss / 1024.0;
   const fs::path log = out / (j.stem + ".log");
   std::string last_line;
@@ -177,7 +177,7 @@ void run_jobs(std::vector<Job>& jobs, const fs::path& out, const std::string& fo
   while ((next < jobs.size() || !running.empty()) && !g_stop) {
     while (next < jobs.size() && static_cast<int>(running.size()) < parallel) {
       Job& j = jobs[next];
-      j.start = Clock::now();
+      j.clock = Stopwatch();
       j.pid = start(j, out, format, extra);
       if (j.pid > 0) running[j.pid] = next;
       else j.status = "error", j.message = "could not start the sizemesh command", ++done, ++failed;
@@ -196,7 +196,7 @@ void run_jobs(std::vector<Job>& jobs, const fs::path& out, const std::string& fo
       continue;
     }
     for (auto& [p, k] : running)  // over time: killed, reaped on a later turn
-      if (jobs[k].status != "timeout" && std::chrono::duration<double>(Clock::now() - jobs[k].start).count() > timeout)
+      if (jobs[k].status != "timeout" && jobs[k].clock.seconds() > timeout)
         kill(p, SIGKILL), jobs[k].status = "timeout";
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -207,7 +207,7 @@ void run_jobs(std::vector<Job>& jobs, const fs::path& out, const std::string& fo
     rusage usage{};
     wait4(p, &wstatus, 0, &usage);
     jobs[k].status = "interrupted";
-    jobs[k].seconds = std::chrono::duration<double>(Clock::now() - jobs[k].start).count();
+    jobs[k].seconds = jobs[k].clock.seconds();
   }
 }
 
@@ -269,7 +269,7 @@ int run_batch(int argc, char** argv) {
     std::signal(SIGTERM, on_signal);
     run_jobs(list, outdir, format, extra, jobs, timeout, quiet);
     write_summary(outdir, list);
-    if (g_stop) return kError;
+    if (g_stop) return 128 + g_stop;  // the shell's convention for a run stopped by a signal
     for (const Job& j : list)
       if (j.status != "ok") return kPartial;
     return kOk;

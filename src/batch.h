@@ -9,7 +9,8 @@ namespace sizemesh {
 
 // argv[0] is "batch". Returns the exit status: 0 when every file meshed, 3
 // when some failed or are partial, 1 when nothing could start (no input, no
-// output folder), 2 for a bad command line.
+// output folder), 2 for a bad command line, 128 + the signal when stopped by
+// SIGINT or SIGTERM (the summary is written all the same).
 int run_batch(int argc, char** argv);
 
 }  // namespace sizemesh

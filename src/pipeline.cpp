@@ -116,6 +116,9 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/
   size_domain_faces(model, r->params);
+  if (!info.domain.farfield.empty() && info.domain.inside_points.empty())
+    warn("no closed solid of the body was found inside the far field: a volume mesher cannot tell the body's "
+         "inside from the fluid around it (see --info for free curves)");
   if (info.entities_failed > 0)
     warn(std::to_string(info.entities_failed) + " entities could not be read and are left out of the mesh; first: " +
          info.first_failure);

@@ -12,23 +12,13 @@
 #include <vector>
 
 #include "tests/cli_runner.h"
+#include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
 namespace fs = std::filesystem;
 using sizemesh::test::run_sizemesh;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("sizemesh_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
 
 // summary.csv as rows of named fields (messages in these tests hold no commas).
 std::vector<std::map<std::string, std::string>> read_summary(const std::string& path) {
@@ -57,7 +47,7 @@ std::vector<std::map<std::string, std::string>> read_summary(const std::string& 
 }
 
 // A folder with three good models, a truncated STEP and a text file named .stp.
-void fill_inputs(const TempDir& dir) {
+void fill_inputs(const sizemesh::test::TempDir& dir) {
   fs::create_directories(dir.path / "in");
   for (const char* m : {"onera_m6_wing.stp", "cone70_capsule_sting.step", "hemisphere_cylinder_domain.stp"})
     fs::copy_file(sizemesh::test::model_path(m), dir.path / "in" / m);
@@ -69,7 +59,7 @@ void fill_inputs(const TempDir& dir) {
 }  // namespace
 
 TEST_CASE("a batch over a folder gives one row per file, and bad files fail without stopping the rest", "[batch]") {
-  TempDir dir("batch");
+  sizemesh::test::TempDir dir("batch");
   fill_inputs(dir);
   const auto r = run_sizemesh("batch " + (dir / "in") + " -o " + (dir / "out") + " --jobs 2 -q", 300);
   INFO(r.err);
@@ -107,7 +97,7 @@ TEST_CASE("a batch over a folder gives one row per file, and bad files fail with
 }
 
 TEST_CASE("batch options: formats, options for every file, bad inputs", "[batch]") {
-  TempDir dir("batch_options");
+  sizemesh::test::TempDir dir("batch_options");
   const std::string m6 = sizemesh::test::model_path("onera_m6_wing.stp");
   const auto msh = run_sizemesh("batch " + m6 + " -o " + (dir / "msh") + " --format msh -q -- --h-min 5", 120);
   INFO(msh.err);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tests/cli_runner.h"
+#include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
 namespace fs = std::filesystem;
@@ -103,21 +104,10 @@ std::string cgnscheck(const std::string& path) {
   return sizemesh::test::slurp(log);
 }
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("sizemesh_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
-
 }  // namespace
 
 TEST_CASE("CGNS of the M6 in a half far field: counts, sections, families and boundary conditions", "[cgns]") {
-  TempDir dir("cgns_m6");
+  sizemesh::test::TempDir dir("cgns_m6");
   const auto r = run_sizemesh(sizemesh::test::model_path("onera_m6_wing.stp") + " -q --farfield sphere --symmetry y -o " +
                               (dir / "m6.cgns") + " --report " + (dir / "m6.json"));
   INFO(r.err);
@@ -173,7 +163,7 @@ TEST_CASE("CGNS of the M6 in a half far field: counts, sections, families and bo
 }
 
 TEST_CASE("CGNS of the F-16's wetted surface lists one family per component", "[cgns]") {
-  TempDir dir("cgns_f16");
+  sizemesh::test::TempDir dir("cgns_f16");
   const auto r = run_sizemesh(sizemesh::test::model_path("f16_openvsp.stp") + " -q -o " + (dir / "f16.cgns") +
                               " --report " + (dir / "f16.json"));
   INFO(r.err);

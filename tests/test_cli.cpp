@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -148,4 +149,21 @@ TEST_CASE("a flag on the command line wins over the config file, and the file's 
   CHECK(with_flag["h_min"].get<double>() == 3.0);   // the flag
   CHECK(with_flag["h_max"].get<double>() == 20.0);  // the file
   fs::remove_all(dir);
+}
+
+TEST_CASE("the test models are the CAD files in tests/data, each with its source, one list for tests and benches") {
+  const fs::path data = fs::path(SIZEMESH_EXAMPLES_DIR) / ".." / "tests" / "data";
+  std::set<std::string> listed, present;
+  for (const auto& m : test::shared_models()) listed.insert(m.file);
+  for (const auto& e : fs::directory_iterator(data)) {
+    const std::string ext = e.path().extension().string();
+    if (ext == ".stp" || ext == ".step" || ext == ".igs" || ext == ".iges" || ext == ".brep")
+      present.insert(e.path().filename().string());
+  }
+  CHECK(listed == present);
+  const std::string sources = test::slurp((data / "SOURCES.md").string());
+  for (const std::string& f : present) {
+    INFO(f);
+    CHECK(sources.find(f) != std::string::npos);
+  }
 }

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tests/cli_runner.h"
+#include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
 namespace fs = std::filesystem;
@@ -117,20 +118,9 @@ Measures measure(const Surface& s) {
   return m;
 }
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("sizemesh_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
-
 // Runs TetGen with quality and region flags on `file.smesh` in `dir` and
 // checks that its boundary faces are exactly the facets, with their markers.
-void check_tetgen_keeps_markers(const TempDir& dir, const std::string& name) {
+void check_tetgen_keeps_markers(const sizemesh::test::TempDir& dir, const std::string& name) {
   const std::string cmd = "cd " + dir.path.string() + " && timeout 300 tetgen -pq1.2AYQ " + name + ".smesh >tetgen.log 2>&1";
   INFO(sizemesh::test::slurp(dir / "tetgen.log"));
   REQUIRE(std::system(cmd.c_str()) == 0);
@@ -155,7 +145,7 @@ std::set<int> markers_of(const std::map<std::array<long, 3>, int>& faces) {
 }  // namespace
 
 TEST_CASE("a far-field sphere around the ONERA M6: TetGen meshes the volume and keeps every face's marker", "[domain]") {
-  TempDir dir("farfield");
+  sizemesh::test::TempDir dir("farfield");
   const auto r = run_sizemesh(sizemesh::test::model_path("onera_m6_wing.stp") + " -q --farfield sphere -o " +
                               (dir / "m6.smesh") + " --report " + (dir / "m6.json"));
   INFO(r.err);
@@ -173,7 +163,7 @@ TEST_CASE("a far-field sphere around the ONERA M6: TetGen meshes the volume and 
 }
 
 TEST_CASE("a half model: the M6 root on the symmetry plane becomes the hole in it", "[domain]") {
-  TempDir dir("symmetry");
+  sizemesh::test::TempDir dir("symmetry");
   const auto r = run_sizemesh(sizemesh::test::model_path("onera_m6_wing.stp") +
                               " -q --farfield box --symmetry y -o " + (dir / "half.smesh"));
   INFO(r.err);
@@ -202,7 +192,7 @@ TEST_CASE("a half model: the M6 root on the symmetry plane becomes the hole in i
 }
 
 TEST_CASE("a sphere in a half far field: areas and enclosed volume match their analytic values", "[domain]") {
-  TempDir dir("analytic");
+  sizemesh::test::TempDir dir("analytic");
   BRepTools::Write(BRepPrimAPI_MakeSphere(1.0).Shape(), (dir / "ball.brep").c_str());
   // Far field of radius 10 and the plane z = 0 through the ball's centre.
   const auto r = run_sizemesh((dir / "ball.brep") + " -q --farfield sphere --farfield-size 10 --symmetry z -o " +
@@ -223,7 +213,7 @@ TEST_CASE("a sphere in a half far field: areas and enclosed volume match their a
 }
 
 TEST_CASE("flow-domain options that cannot work give one clear line", "[domain]") {
-  TempDir dir("domain_errors");
+  sizemesh::test::TempDir dir("domain_errors");
   const std::string m6 = sizemesh::test::model_path("onera_m6_wing.stp") + " -o " + (dir / "x.vtu");
   BRepTools::Write(BRepBuilderAPI_MakeFace(gp_Pln(), -1, 1, -1, 1).Shape(), (dir / "sheet.brep").c_str());
   const std::vector<std::pair<std::string, std::string>> cases = {

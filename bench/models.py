@@ -1,0 +1,9 @@
+"""The models every bench runs: the CAD files of tests/data (their sources
+and licences in tests/data/SOURCES.md), the same folder the tests read, so
+there is one list. SIZEMESH_MODELS_DIR may point at another folder."""
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DIR = os.environ.get("SIZEMESH_MODELS_DIR", os.path.join(os.path.dirname(HERE), "tests", "data"))
+CAD = (".step", ".stp", ".iges", ".igs", ".brep")
+MODELS = sorted(f for f in os.listdir(DIR) if f.lower().endswith(CAD))
