@@ -30,6 +30,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <map>
 
 #include "geometry/occt_model.h"
@@ -50,12 +51,12 @@ enum class Format { Step, Iges, Brep, Unknown };
 // itself. Its readers can also fault on corrupt data: signals become
 // Standard_Failure inside OCC_CATCH_SIGNALS blocks.
 void prepare_occt() {
-  static bool done = false;
-  if (done) return;
-  done = true;
-  const Handle(Message_Messenger)& m = Message::DefaultMessenger();
-  m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  OSD::SetSignal(false);
+  static std::once_flag once;  // Python threads may load models at the same time
+  std::call_once(once, [] {
+    const Handle(Message_Messenger)& m = Message::DefaultMessenger();
+    m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    OSD::SetSignal(false);
+  });
 }
 
 // The last bytes of a file, to see whether it ends as its format requires.
@@ -292,19 +293,33 @@ CadFile read_cad(const std::string& path, const LoadOptions& options) {
   std::vector<std::pair<TopoDS_Shape, std::string>> names;
   TopoDS_Shape shape;
   check_complete(path, by_content);
+  auto cannot_read = [&](const Standard_Failure& e) {
+    const char* why = e.GetMessageString();
+    return Error("cannot read '" + path + "': " + (why && *why ? why : e.DynamicType()->Name()));
+  };
+  {
+    // The translators' length unit is a setting of the whole kernel: files
+    // are read one at a time (Python threads may load several at once).
+    static std::mutex reading;
+    const std::lock_guard<std::mutex> one_at_a_time(reading);
+    try {
+      OCC_CATCH_SIGNALS
+      switch (by_content) {
+        case Format::Step: shape = read_step(path, info, names); break;
+        case Format::Iges: shape = read_iges(path, info); break;
+        default: shape = read_brep(path, info); break;
+      }
+    } catch (const Standard_Failure& e) {
+      throw cannot_read(e);
+    }
+  }
   try {
     OCC_CATCH_SIGNALS
-    switch (by_content) {
-      case Format::Step: shape = read_step(path, info, names); break;
-      case Format::Iges: shape = read_iges(path, info); break;
-      default: shape = read_brep(path, info); break;
-    }
     if (shape.IsNull() || !TopExp_Explorer(shape, TopAbs_FACE).More())
       throw Error("'" + path + "' contains no surfaces to mesh" + failure_note(info));
     return sew_shape(shape, info, options, names);
   } catch (const Standard_Failure& e) {
-    const char* why = e.GetMessageString();
-    throw Error("cannot read '" + path + "': " + (why && *why ? why : e.DynamicType()->Name()));
+    throw cannot_read(e);
   }
 }
 

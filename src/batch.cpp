@@ -260,7 +260,10 @@ int run_batch(int argc, char** argv) {
   try {
     std::vector<Job> list;
     for (const std::string& in : inputs)
-      for (const std::string& f : expand(in)) list.push_back(Job{f});
+      for (const std::string& f : expand(in)) {
+        list.emplace_back();
+        list.back().input = f;
+      }
     name_outputs(list);
     std::error_code ec;
     fs::create_directories(outdir, ec);
