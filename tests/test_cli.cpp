@@ -167,3 +167,29 @@ TEST_CASE("the test models are the CAD files in tests/data, each with its source
     CHECK(sources.find(f) != std::string::npos);
   }
 }
+
+TEST_CASE("no test reads anything from outside the repository", "[clone]") {
+  // A plain clone must pass its own tests: no test, test script or build file
+  // names a folder beside the clone or a machine's own paths.
+  const fs::path root = fs::canonical(fs::path(SIZEMESH_EXAMPLES_DIR) / "..");
+  std::vector<fs::path> files = {root / "CMakeLists.txt", root / ".ci" / "run", root / "cmake" / "setup.sh"};
+  for (const char* dir : {"tests", "tests/python", "cmake"})
+    for (const auto& e : fs::directory_iterator(root / dir))
+      if (e.is_regular_file()) files.push_back(e.path());
+  int checked = 0;
+  for (const fs::path& f : files) {
+    const std::string text = test::slurp(f.string());
+    // Spelled in two parts, so that this file does not name them itself.
+    for (const std::string& outside : {std::string("..") + "/shared", std::string("shared") + "/models",
+                                       std::string("/work") + "/", std::string("/home") + "/",
+                                       std::string("/root") + "/"}) {
+      INFO(f.string() << " names " << outside);
+      CHECK(text.find(outside) == std::string::npos);
+    }
+    ++checked;
+  }
+  CHECK(checked > 20);
+  // The models the tests use come from the tree unless the override says otherwise.
+  const std::string models_cmake = test::slurp((root / "cmake" / "Models.cmake").string());
+  CHECK(models_cmake.find("set(SIZEMESH_MODELS_DIR \"${CMAKE_SOURCE_DIR}/tests/data\")") != std::string::npos);
+}
