@@ -8,28 +8,22 @@ namespace sizemesh {
 
 namespace {
 // CLI11's own range check prints the whole double range; say it plainly.
-const auto positive = CLI::Validator(
-    [](std::string& s) -> std::string {
-      try {
-        size_t pos = 0;
-        const double v = std::stod(s, &pos);
-        if (pos == s.size() && v > 0 && v < 1e300) return {};
-      } catch (...) {
-      }
-      return "must be a positive number, got '" + s + "'";
-    },
-    "POSITIVE");
-const auto finite_number = CLI::Validator(
-    [](std::string& s) -> std::string {
-      try {
-        size_t pos = 0;
-        const double v = std::stod(s, &pos);
-        if (pos == s.size() && std::abs(v) < 1e300) return {};
-      } catch (...) {
-      }
-      return "must be a finite number, got '" + s + "'";
-    },
-    "NUMBER");
+// A number that `ok` accepts, or "must be <what>, got '...'".
+CLI::Validator number_check(const std::string& what, const std::string& name, bool (*ok)(double)) {
+  return CLI::Validator(
+      [what, ok](std::string& s) -> std::string {
+        try {
+          size_t pos = 0;
+          const double v = std::stod(s, &pos);
+          if (pos == s.size() && ok(v)) return {};
+        } catch (const std::logic_error&) {  // not a number, or out of double's range
+        }
+        return "must be " + what + ", got '" + s + "'";
+      },
+      name);
+}
+const auto positive = number_check("a positive number", "POSITIVE", [](double v) { return v > 0 && v < 1e300; });
+const auto finite_number = number_check("a finite number", "NUMBER", [](double v) { return std::abs(v) < 1e300; });
 }  // namespace
 
 void add_run_options(CLI::App& app, RunCommandLine& cl) {
