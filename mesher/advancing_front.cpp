@@ -518,12 +518,13 @@ class Front {
     ++visit_;
     near_edges_.clear();
     near_nodes_.clear();
-    grid_.query(lo, hi, [&](int e) {
-      ++work_;
-      if (stamp_[e] == visit_ || !edges_[e].alive) return;
-      stamp_[e] = visit_;
-      near_edges_.push_back(e);
-    });
+    grid_.query(
+        lo, hi, [&](int e) { return ++work_, edges_[e].alive; },
+        [&](int e) {
+          if (stamp_[e] == visit_) return;
+          stamp_[e] = visit_;
+          near_edges_.push_back(e);
+        });
     if (node_stamp_.size() < fm_.uv.size()) node_stamp_.resize(fm_.uv.size() + 1024, 0);
     for (int ei : near_edges_)
       for (int k : {edges_[ei].a, edges_[ei].b})

@@ -3,9 +3,12 @@
 // so the edges and nodes near a new triangle are found without a scan.
 //
 // Inputs:  the uv box, an expected edge count (sets the cell count), edges by id.
-// Outputs: query(lo, hi, f) calls f(id) for every edge listed in a cell the
-//          box [lo, hi] touches (an edge may come more than once; dead edges
-//          stay listed until the grid is built again).
+// Outputs: query(lo, hi, alive, f) calls f(id) for every edge listed in a
+//          cell the box [lo, hi] touches and alive(id) keeps (an edge may come
+//          more than once); edges alive(id) refuses are dropped from the cells
+//          met, so a front that has long left a crowded part of the face does
+//          not pay for its dead edges there. The order of the edges kept is
+//          the order they were listed in.
 #pragma once
 
 #include <algorithm>
@@ -32,13 +35,18 @@ class EdgeGrid {
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) cells_[size_t(j) * n_ + i].push_back(e);
   }
-  template <class F>
-  void query(const Vec2& lo, const Vec2& hi, F&& f) const {
+  template <class Alive, class F>
+  void query(const Vec2& lo, const Vec2& hi, Alive&& alive, F&& f) {
     int i0, j0, i1, j1;
     range(lo, hi, i0, j0, i1, j1);
     for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
-        for (int e : cells_[size_t(j) * n_ + i]) f(e);
+      for (int i = i0; i <= i1; ++i) {
+        std::vector<int>& cell = cells_[size_t(j) * n_ + i];
+        size_t kept = 0;
+        for (int e : cell)
+          if (alive(e)) cell[kept++] = e, f(e);
+        cell.resize(kept);
+      }
   }
 
  private:

@@ -235,3 +235,16 @@ TEST_CASE("flow-domain options that cannot work give one clear line", "[domain]"
     CHECK(r.err_lines() == 1);
   }
 }
+
+TEST_CASE("the manta cut in half inside a far field: every face meshed, TetGen keeps the markers", "[domain]") {
+  // Its symmetry plane holds the body's section, 40000 smallest elements
+  // across: the front's search there once paid for every dead edge near the
+  // section and ran out of its budget.
+  sizemesh::test::TempDir dir("manta_half");
+  const auto r = run_sizemesh(sizemesh::test::model_path("manta2_openvsp.stp") +
+                                  " -q --farfield sphere --symmetry y -o " + (dir / "half.smesh"),
+                              120);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  check_tetgen_keeps_markers(dir, "half");
+}
