@@ -1,5 +1,6 @@
 """meshio (Debian python3-meshio), the common Python mesh reader, opens every
 mesh file sizemesh writes for a solver or a volume mesher (.vtu, .msh, .mesh)
+and the background mesh with its size fields (--background, .vtu)
 and finds in each the same points, triangles and face markers.
 
 Usage: test_meshio.py SIZEMESH_BINARY MODEL WORKDIR
@@ -30,7 +31,8 @@ def main():
     binary, model, work = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     vtu, msh, medit, report = (os.path.join(work, "m6." + e) for e in ("vtu", "msh", "mesh", "json"))
-    run(binary, model, vtu, "--report", report)
+    background = os.path.join(work, "m6_background.vtu")
+    run(binary, model, vtu, "--report", report, "--background", background)
     run(binary, model, msh)
     run(binary, model, medit)
     counts = json.load(open(report))["mesh"]
@@ -60,6 +62,13 @@ def main():
     assert len(dt) == counts["triangles"]
     refs = np.concatenate([r for r, c in zip(d.cell_data["medit:ref"], d.cells) if c.type == "triangle"])
     assert triangles_by_marker(d.points, dt, refs) == reference, "Medit references differ from the vtu's markers"
+    b = meshio.read(background)
+    summary = json.load(open(report))["background"]
+    assert len(b.cells_dict["triangle"]) == summary["triangles"] and len(b.points) == summary["vertices"]
+    for name in ("h_initial", "h_smoothed", "classification_dim", "classification_id"):
+        assert len(b.point_data[name]) == len(b.points), name
+    assert np.all(b.point_data["h_smoothed"] <= b.point_data["h_initial"])
+
     print("meshio read %d triangles, %d points, %d markers from .vtu, .msh and .mesh"
           % (len(tris), len(m.points), len(set(reference.values()))))
 
