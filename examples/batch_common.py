@@ -75,6 +75,10 @@ def mesh_one(sizemesh, path, outdir, stem, fmt="vtu", timeout=600, options=()):
     os.makedirs(outdir, exist_ok=True)
     report = os.path.join(outdir, stem + ".json")
     cmd = [sizemesh, path, "-q", "-o", os.path.join(outdir, "%s.%s" % (stem, fmt)), "--report", report, *options]
+    out = os.path.join(outdir, "%s.%s" % (stem, fmt))
+    for old in (out, report):  # an earlier batch's files must not pass for this run's
+        if os.path.exists(old):
+            os.remove(old)
     row = dict.fromkeys(COLUMNS, "")
     row["file"] = path
     start = time.perf_counter()

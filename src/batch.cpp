@@ -84,6 +84,11 @@ void name_outputs(std::vector<Job>& jobs) {
 
 // Starts one file's run: sizemesh FILE -q -o OUT --report JSON [options], stderr to its log.
 pid_t start(const Job& j, const fs::path& out, const std::string& format, const std::vector<std::string>& extra) {
+  // An earlier batch's files for this one must not pass for its results
+  // (a run killed before writing its report would read the old one).
+  std::error_code ec;
+  for (const std::string& ext : {"." + format, std::string(".json"), std::string(".log")})
+    fs::remove(out / (j.stem + ext), ec);
   std::vector<std::string> args = {"/proc/self/exe", j.input, "-q", "-o", (out / (j.stem + "." + format)).string(),
                                    "--report", (out / (j.stem + ".json")).string()};
   args.insert(args.end(), extra.begin(), extra.end());
