@@ -96,10 +96,7 @@ void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning:
 
 }  // namespace
 
-std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& warn_in) {
-  const WarningSink warn = [&](const std::string& line) {
-    if (warn_in) warn_in(line);
-  };
+std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& warn) {
   auto r = std::make_unique<RunResult>(o.verbose);
   RunReport& report = r->report;
   r->params = o.sizing;
@@ -146,10 +143,7 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   return r;
 }
 
-void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn_in) {
-  const WarningSink warn = [&](const std::string& line) {
-    if (warn_in) warn_in(line);
-  };
+void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   check_triangle_budget(r.estimate, r.params.max_triangles, r.sizes);
   const Model& model = *r.model;
   r.query.emplace(size_query_for(model, r.bg, r.sizes.h));                  // sizing/ (4.2)

@@ -63,11 +63,11 @@ using WarningSink = std::function<void(const std::string&)>;
 
 // Paper 3: loading, preparation, background mesh, initial sizes and smoothing;
 // prints the sizing summary when verbose. Throws Error on bad input.
-std::unique_ptr<RunResult> size_model(const RunOptions& options, const WarningSink& warn = {});
+std::unique_ptr<RunResult> size_model(const RunOptions& options, const WarningSink& warn);
 
 // Paper 4: the size query and the surface mesh, its quality and target sizes.
 // Throws Error when the size map asks for more than --max-triangles.
-void mesh_model(RunResult& r, const RunOptions& options, const WarningSink& warn = {});
+void mesh_model(RunResult& r, const RunOptions& options, const WarningSink& warn);
 
 // The sizemesh command: both stages and every file asked for. Returns the
 // exit code (kPartial when some faces could not be meshed; the rest is still

@@ -192,9 +192,8 @@ Mesh mesh(const py::object& path, const py::kwargs& kwargs) {
   Run run = sized(path, kwargs);
   {
     py::gil_scoped_release unlocked;
-    std::vector<std::string> later;
-    mesh_model(*run.result, run.options, [&later](const std::string& w) { later.push_back(w); });
-    run.result->warnings.insert(run.result->warnings.end(), later.begin(), later.end());
+    std::vector<std::string>& warnings = run.result->warnings;
+    mesh_model(*run.result, run.options, [&warnings](const std::string& w) { warnings.push_back(w); });
   }
   Mesh m;
   static_cast<Run&>(m) = std::move(run);
