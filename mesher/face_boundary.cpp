@@ -58,6 +58,7 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
     for (const CurveUse& u : fl) {
       std::vector<Entry> part = use_entries(g, cm, face, u);
       if (part.empty()) continue;
+      for (Entry& e : part) e.uv = fs.to_mesher(e.uv);
       if (!seq.empty()) {  // pcurves may be given a period apart
         const Vec2 shift = fs.unwrap(part.front().uv, seq.back().uv) - part.front().uv;
         for (Entry& e : part) e.uv += shift;

@@ -11,11 +11,16 @@ FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
       face_(face),
       period_u_(g.face_period_u(face)),
       period_v_(g.face_period_v(face)),
-      fallback_h_(std::max(g.face_boundary_length(face) / 12, 1e-300)) {}
+      fallback_h_(std::max(g.face_boundary_length(face) / 12, 1e-300)),
+      stretch_(g, face) {}
 
 bool FaceSurface::turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2& uc, const Vec3& nt) const {
   try {
-    const Vec3 nc = eval_shape((ua + ub + uc) / 3.0).n;
+    // At the centroid in the surface's uv, as the quality report takes it.
+    const Vec2 c = (to_surface(ua) + to_surface(ub) + to_surface(uc)) / 3.0;
+    const SurfaceD1 d = g_.eval_face(face_, c);
+    Vec3 nc = d.du.cross(d.dv);
+    if (!(nc.norm() > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()))) nc = Vec3::Zero();
     return nc.squaredNorm() > 0 && !(nt.dot(nc) > 0);
   } catch (const EvaluationError&) {
     return true;
@@ -23,11 +28,12 @@ bool FaceSurface::turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2&
 }
 
 SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
-  const SurfaceD1 d = g_.eval_face(face_, uv);
+  const SurfaceD1 d = g_.eval_face(face_, stretch_.to_surface(uv));
+  const Vec2 slope = stretch_.slope(uv);
   SurfaceSample s;
   s.p = d.p;
-  s.du = d.du;
-  s.dv = d.dv;
+  s.du = d.du * slope.x();
+  s.dv = d.dv * slope.y();
   const Vec3 n = d.du.cross(d.dv);
   const double len = n.norm();
   s.n = len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
@@ -37,7 +43,7 @@ SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
 
 SurfaceSample FaceSurface::eval(const Vec2& uv) {
   SurfaceSample s = eval_shape(uv);
-  s.h = h_.at(face_, uv, hint_);
+  s.h = h_.at(face_, stretch_.to_surface(uv), hint_);
   ++size_queries;
   if (!(s.h > 0) || !std::isfinite(s.h)) s.h = fallback_h_;  // a size map with a hole
   return s;
@@ -51,9 +57,10 @@ Vec2 FaceSurface::unwrap(Vec2 uv, const Vec2& near) const {
 
 bool FaceSurface::project(const Vec3& xyz, Vec2& uv) const {
   const Vec2 start = uv;
-  if (!g_.project_to_face(face_, xyz, uv)) return false;
-  if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) return false;
-  uv = unwrap(uv, start);
+  Vec2 su = stretch_.to_surface(uv);
+  if (!g_.project_to_face(face_, xyz, su)) return false;
+  if (!std::isfinite(su.x()) || !std::isfinite(su.y())) return false;
+  uv = unwrap(stretch_.to_mesher(su), start);  // periodic directions are never stretched
   return true;
 }
 

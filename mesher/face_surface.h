@@ -2,6 +2,10 @@
 // derivatives, unit natural normal and the wanted size h at a uv, with the
 // metric M = J^T J / h^2 (J = [du dv]) in which a unit edge has the wanted length.
 //
+// The uv here is the mesher's (mesher/uv_stretch.h): the surface's own
+// parameters, stretched where its speed varies strongly; to_surface() and
+// to_mesher() convert, and the samples' derivatives are taken in the mesher's uv.
+//
 // Inputs: the B-rep, the size function and a face id.
 // Outputs: samples at uv; projections of points in space onto the face (uv).
 // Not thread-safe (keeps the size query hint); one per face and thread.
@@ -10,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include "geometry/geometry.h"
+#include "mesher/uv_stretch.h"
 #include "sizing/size_function.h"
 
 namespace sizemesh {
@@ -45,6 +50,9 @@ class FaceSurface {
   bool project(const Vec3& xyz, Vec2& uv) const;
   // uv shifted by whole periods to lie closest to `near`.
   Vec2 unwrap(Vec2 uv, const Vec2& near) const;
+  // Between the mesher's uv and the surface's own parameters.
+  Vec2 to_surface(const Vec2& uv) const { return stretch_.to_surface(uv); }
+  Vec2 to_mesher(const Vec2& uv) const { return stretch_.to_mesher(uv); }
 
   const Geometry& geometry() const { return g_; }
   int face() const { return face_; }
@@ -57,6 +65,7 @@ class FaceSurface {
   int hint_ = -1;
   double period_u_, period_v_;
   double fallback_h_;  // used where h is not a positive number
+  UvStretch stretch_;
 };
 
 }  // namespace sizemesh

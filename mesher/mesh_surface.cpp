@@ -91,6 +91,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
     } else {
       optimise(r.mesh, fs, o.optimise_passes);
       r.seconds_optimise = clock.lap();
+      for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
       r.ok = true;
     }
   } catch (const std::exception& e) {

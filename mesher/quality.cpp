@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -20,7 +21,8 @@ namespace {
 struct TriangleMeasure {
   double area = 0, node_distance = 0, inner_node_distance = 0;
   bool zero_area = false, inverted = false;
-  std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
+  std::array<double, 3> edge_ratio{};   // length / h(midpoint) of edge (k, k+1)
+  std::array<double, 3> edge_length{};  // length of edge (k, k+1)
 };
 
 TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h, size_t t, int& hint) {
@@ -44,6 +46,7 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
     // Size at the edge's midpoint, looked up in the face's uv space.
     const int k1 = (k + 1) % 3;
     const double len = (m.xyz[tr[k1]] - m.xyz[tr[k]]).norm();
+    r.edge_length[k] = len;
     r.edge_ratio[k] = len / h.at(f, 0.5 * (uv[k] + uv[k1]), hint);
   }
   return r;
@@ -67,8 +70,31 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 // about the wanted size, so such a triangle has a side of about h and a
 // height under h tan(12 deg): no triangle spanning that face can do better
 // unless the size map goes below h_min.
-void count_forced_slivers(const SurfaceMesh& m, const std::vector<TriangleMeasure>& per, MeshQuality& q) {
+void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::vector<TriangleMeasure>& per,
+                          MeshQuality& q) {
   const double kNarrow = std::tan(12.0 * 3.14159265358979323846 / 180.0);
+  // Mesh nodes a and b are consecutive on a B-rep curve shorter than h: its
+  // segments are as short as the CAD makes them, whatever the size map asks.
+  std::map<std::pair<int, int>, double> shortest;  // B-rep point pair -> shortest curve between them
+  auto shortest_between = [&](int p, int r) {
+    if (shortest.empty())
+      for (int c = 1; c <= g.num_curves(); ++c) {
+        const auto key = std::minmax(g.curve_start_point(c), g.curve_end_point(c));
+        const auto it = shortest.find(key);
+        const double len = g.curve_length(c);
+        if (it == shortest.end() || len < it->second) shortest[key] = len;
+      }
+    const auto it = shortest.find(std::minmax(p, r));
+    return it == shortest.end() ? HUGE_VAL : it->second;
+  };
+  auto short_curve_segment = [&](int a, int b, double h) {
+    const int da = m.node_dim[a], db = m.node_dim[b], ea = m.node_entity[a], eb = m.node_entity[b];
+    if (da == 0 && db == 0) return shortest_between(ea, eb) < h;
+    if (da == 1 && db == 1) return ea == eb && g.curve_length(ea) < h;
+    if (da + db != 1) return false;
+    const int curve = da == 1 ? ea : eb, point = da == 0 ? ea : eb;
+    return (g.curve_start_point(curve) == point || g.curve_end_point(curve) == point) && g.curve_length(curve) < h;
+  };
   auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
   std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
   for (size_t t = 0; t < m.tris.size(); ++t) {
@@ -115,6 +141,9 @@ void count_forced_slivers(const SurfaceMesh& m, const std::vector<TriangleMeasur
       if (on_boundary && !along_curve && ratio[e] < kNarrow) {
         forced = true;
         ++q.narrow_below_12;
+      } else if (ratio[e] < kNarrow && short_curve_segment(a, b, per[t].edge_length[e] / ratio[e])) {
+        forced = true;
+        ++q.short_curve_below_12;
       }
     }
     q.forced_below_12 += forced;
@@ -171,7 +200,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
-  count_forced_slivers(m, per, q);
+  count_forced_slivers(m, g, per, q);
   // Edge uses, sorted by undirected edge: (min, max) << 1 | reversed, then the
   // use (triangle, side) so each group is one edge with its directions.
   std::vector<std::pair<uint64_t, uint32_t>> uses(3 * nt);

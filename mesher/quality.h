@@ -19,7 +19,10 @@
 //   point, or whose nodes all lie on the two curves meeting there (spanning
 //   the corner's narrow wedge), is forced by the CAD; so is a triangle with
 //   every node on its face's boundary whose shortest edge spans the face at
-//   under h tan(12 deg) (a face narrower than the elements).
+//   under h tan(12 deg) (a face narrower than the elements), and one whose
+//   shortest edge, under h tan(12 deg), is a segment of a B-rep curve itself
+//   shorter than h (a CAD curve shorter than the elements, e.g. one split
+//   only because it turns sharply).
 //   Self-intersecting triangle pairs (mesher/self_intersection.h), and of those
 //   the local ones: within one face or between faces that share a curve.
 #pragma once
@@ -38,8 +41,9 @@ struct MeshQuality {
   std::vector<double> min_angle;          // per triangle (degrees)
   std::array<int, 10> histogram{};        // of min_angle, 6-degree bins
   int below_12 = 0, below_24 = 0;
-  int forced_below_12 = 0;                // at a CAD corner itself under 12 degrees, or across a narrow face
+  int forced_below_12 = 0;                // at a CAD corner under 12 degrees, across a narrow face or on a short curve
   int narrow_below_12 = 0;                // of those, spanning a face narrower than h tan(12 deg)
+  int short_curve_below_12 = 0;           // of those, on a segment under h tan(12 deg) of a curve shorter than h
   int avoidable_below_12 = 0;             // below_12 - forced_below_12
   double worst_angle = 180;
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;

@@ -81,6 +81,7 @@ nlohmann::json report_json(const RunReport& r) {
                  {"bad_share", q.below_12 / n},
                  {"forced_below_12deg", q.forced_below_12},
                  {"narrow_face_below_12deg", q.narrow_below_12},
+                 {"short_curve_below_12deg", q.short_curve_below_12},
                  {"avoidable_below_12deg", q.avoidable_below_12},
                  {"low_quality_below_24deg", q.below_24},
                  {"low_quality_share", q.below_24 / n},
@@ -125,8 +126,10 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
   const double n = std::max(1, q.triangles);
   out << "mesh: " << q.triangles << " triangles, " << q.nodes << " nodes\n"
       << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
-      << " (" << 100.0 * q.below_12 / n << "%; " << q.forced_below_12 - q.narrow_below_12 << " forced by CAD corners, "
-      << q.narrow_below_12 << " by faces narrower than the elements), below 24 deg: " << q.below_24 << " ("
+      << " (" << 100.0 * q.below_12 / n << "%; "
+      << q.forced_below_12 - q.narrow_below_12 - q.short_curve_below_12 << " forced by CAD corners, "
+      << q.narrow_below_12 << " by faces narrower than the elements, " << q.short_curve_below_12
+      << " by curves shorter than the elements; " << q.avoidable_below_12 << " avoidable), below 24 deg: " << q.below_24 << " ("
       << 100.0 * q.below_24 / n
       << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
       << "sized at h_min: " << 100.0 * r.at_h_min_share << "% of the triangles, " << 100.0 * r.at_h_min_area_share

@@ -22,6 +22,8 @@
 #include "mesher/discretise_curves.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
+#include "mesher/uv_stretch.h"
+#include "mesher/face_surface.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -412,12 +414,17 @@ namespace {
 // Points 1..4 at the corners, curves 1..4 the sides (t in [0, 1]).
 class DistortedRectangle final : public Geometry {
  public:
-  DistortedRectangle(double L, double W) : L_(L), W_(W) {}
+  // stalls: x(u) = L (2u - u^2), whose speed falls to zero at u = 1 (a
+  // trailing edge or tip closed by coincident control points), and the face
+  // sheared by y += shear x (u-lines running obliquely into that edge).
+  DistortedRectangle(double L, double W, bool stalls = false, double shear = 0)
+      : L_(L), W_(W), stalls_(stalls), shear_(shear) {}
   int num_faces() const override { return 1; }
   int num_curves() const override { return 4; }
   int num_points() const override { return 4; }
   SurfaceD1 eval_face(int, const Vec2& uv) const override {
-    return {Vec3(x(uv.x()), y(uv.y()), 0), Vec3(dx(uv.x()), 0, 0), Vec3(0, dy(uv.y()), 0)};
+    return {Vec3(x(uv.x()), y(uv.y()) + shear_ * x(uv.x()), 0), Vec3(dx(uv.x()), shear_ * dx(uv.x()), 0),
+            Vec3(0, dy(uv.y()), 0)};
   }
   bool max_curvature(int, const Vec2&, double& k) const override {
     k = 0;
@@ -428,14 +435,14 @@ class DistortedRectangle final : public Geometry {
   double face_period_u(int) const override { return 0; }
   double face_period_v(int) const override { return 0; }
   double face_area(int) const override { return L_ * W_; }
-  double face_boundary_length(int) const override { return 2 * (L_ + W_); }
+  double face_boundary_length(int) const override { return 2 * (L_ * std::hypot(1.0, shear_) + W_); }
   std::vector<FaceLoop> face_loops(int) const override {
     return {{{1, false, 0}, {2, false, 0}, {3, false, 0}, {4, false, 0}}};
   }
   bool project_to_face(int, const Vec3& p, Vec2& uv) const override {
     for (int it = 0; it < 50; ++it) {
-      uv.x() -= (x(uv.x()) - p.x()) / dx(uv.x());
-      uv.y() -= (y(uv.y()) - p.y()) / dy(uv.y());
+      uv.x() = std::clamp(uv.x() - (x(uv.x()) - p.x()) / std::max(dx(uv.x()), 1e-3 * L_), 0.0, 1.0);
+      uv.y() -= (y(uv.y()) + shear_ * x(uv.x()) - p.y()) / dy(uv.y());
     }
     return true;
   }
@@ -466,11 +473,13 @@ class DistortedRectangle final : public Geometry {
     return c[p - 1];
   }
   static Vec2 pcurve(int c, double t) { return corner(c) + t * (corner(c % 4 + 1) - corner(c)); }
-  double x(double u) const { return L_ * (0.05 * u + 0.95 * u * u * u); }
-  double dx(double u) const { return L_ * (0.05 + 2.85 * u * u); }
+  double x(double u) const { return stalls_ ? L_ * (2 * u - u * u) : L_ * (0.05 * u + 0.95 * u * u * u); }
+  double dx(double u) const { return stalls_ ? L_ * (2 - 2 * u) : L_ * (0.05 + 2.85 * u * u); }
   double y(double v) const { return W_ * (0.1 * v + 0.9 * v * v); }
   double dy(double v) const { return W_ * (0.1 + 1.8 * v); }
   double L_, W_;
+  bool stalls_;
+  double shear_;
 };
 
 }  // namespace
@@ -495,4 +504,57 @@ TEST_CASE("a distorted parametrisation gives a mesh shaped in space, not in uv",
   CHECK(q.below_12 == 0);
   CHECK(q.below_24 <= 0.005 * q.triangles);
   CHECK(q.size_conformity >= 0.95);
+}
+
+TEST_CASE("a parametrisation whose speed varies strongly is stretched towards arc length", "[mesher]") {
+  SECTION("speed falling to zero at an edge: the map and its inverse") {
+    // The manta's body patches end at the trailing edge with |du| = 0: in the
+    // surface's own uv the front put nodes a hundredth of h from that edge.
+    const DistortedRectangle rect(4.0, 1.0, true);
+    const UvStretch stretch(rect, 1);
+    CHECK(stretch.stretched(0));
+    CHECK_FALSE(stretch.stretched(1));  // |dv| varies 19:1, under UvStretch::kRatio
+    for (double w : {0.0, 0.1, 0.5, 0.9, 0.99, 1.0}) {
+      const Vec2 uv = stretch.to_surface(Vec2(w, 0.3));
+      CHECK(uv.y() == 0.3);
+      CHECK(stretch.to_mesher(uv).x() == Approx(w).margin(1e-12));
+    }
+    CHECK(stretch.to_surface(Vec2(0, 0)).x() == 0.0);
+    CHECK(stretch.to_surface(Vec2(1, 0)).x() == 1.0);
+    // About arc length: the middle of the mesher's range is near the middle
+    // of the face in space (x = 2), where the surface's own u = 0.5 is at x = 3.
+    CHECK(rect.eval_face(1, stretch.to_surface(Vec2(0.5, 0.5))).p.x() == Approx(2.0).epsilon(0.02));
+    // The samples' derivatives are taken in the mesher's uv.
+    const UniformSize h(0.1);
+    FaceSurface fs(rect, h, 1);
+    for (double w : {0.2, 0.5, 0.8}) {
+      const Vec2 p(w, 0.4), e(1e-6, 0);
+      const Vec3 fd = (fs.eval_shape(p + e).p - fs.eval_shape(p - e).p) / 2e-6;
+      CHECK((fs.eval_shape(p).du - fd).norm() <= 1e-6 * fd.norm());
+    }
+  }
+  SECTION("speed varying 58:1 on a sheared face: well-sized elements") {
+    // u-lines run obliquely (y += 2x) and |du| grows 58-fold along them: in the
+    // surface's own uv the front made edges about twice the wanted length.
+    const DistortedRectangle rect(4.0, 1.0, false, 2.0);
+    const UniformSize h(0.1);
+    const SurfaceMesh m = mesh_surface(rect, h);
+    const MeshQuality q = mesh_quality(m, rect, h);
+    INFO("triangles " << q.triangles << ", below 12 deg " << q.below_12 << ", below 24 deg " << q.below_24
+                      << ", conformity " << q.size_conformity);
+    REQUIRE(m.failures.empty());
+    CHECK(q.inverted == 0);
+    CHECK(q.zero_area == 0);
+    CHECK(q.boundary_edges == 2 * std::lround(4.0 * std::hypot(1.0, 2.0) / 0.1) + 2 * 10);
+    CHECK(q.area == Approx(4.0).epsilon(1e-9));
+    CHECK(q.below_12 == 0);
+    CHECK(q.below_24 <= 0.005 * q.triangles);
+    CHECK(q.size_conformity >= 0.95);
+    // The mesh leaves in the surface's own uv: every corner's uv maps to its node.
+    double worst = 0;
+    for (size_t t = 0; t < m.tris.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        worst = std::max(worst, (rect.eval_face(1, m.tri_uv[t][k]).p - m.xyz[m.tris[t][k]]).norm());
+    CHECK(worst <= 1e-9);
+  }
 }

@@ -1,0 +1,94 @@
+#include "mesher/uv_stretch.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace sizemesh {
+namespace {
+
+constexpr int kIntervals = 96;  // knots of a map
+constexpr int kLines = 8;       // lines across the face averaged into a direction's speed
+
+}  // namespace
+
+double UvStretch::Axis::interpolate(const std::vector<double>& from, const std::vector<double>& to, double x) {
+  const size_t n = from.size();
+  size_t i = std::upper_bound(from.begin(), from.end(), x) - from.begin();
+  i = std::clamp<size_t>(i, 1, n - 1);  // outside the range: the end interval's line
+  const double t = (x - from[i - 1]) / (from[i] - from[i - 1]);
+  return to[i - 1] + t * (to[i] - to[i - 1]);
+}
+
+double UvStretch::Axis::slope(double x) const {
+  if (w.empty()) return 1.0;
+  const size_t n = w.size();
+  size_t i = std::upper_bound(w.begin(), w.end(), x) - w.begin();
+  i = std::clamp<size_t>(i, 1, n - 1);
+  return (u[i] - u[i - 1]) / (w[i] - w[i - 1]);
+}
+
+UvStretch::UvStretch(const Geometry& g, int face) {
+  const UVBox box = g.face_uv_bounds(face);
+  const double period[2] = {g.face_period_u(face), g.face_period_v(face)};
+  for (int d = 0; d < 2; ++d) {
+    if (period[d] > 0) continue;
+    const int o = 1 - d;
+    const double lo = box.lo[d], hi = box.hi[d];
+    if (!(hi > lo) || !std::isfinite(hi - lo)) continue;
+    // Speed along direction d at each knot on lines across the face, and its mean.
+    std::vector<double> knot(kIntervals + 1), speed(kIntervals + 1, 0.0);
+    std::vector<std::array<double, kLines>> line(kIntervals + 1);
+    bool ok = true;
+    for (int i = 0; i <= kIntervals && ok; ++i) {
+      knot[i] = lo + (hi - lo) * i / kIntervals;
+      for (int j = 0; j < kLines && ok; ++j) {
+        Vec2 uv;
+        uv[d] = knot[i];
+        uv[o] = box.lo[o] + (box.hi[o] - box.lo[o]) * (j + 0.5) / kLines;
+        try {
+          const SurfaceD1 s = g.eval_face(face, uv);
+          line[i][j] = (d == 0 ? s.du : s.dv).norm();
+          ok = std::isfinite(line[i][j]);
+        } catch (const std::exception&) {  // not evaluable here: the face keeps its own uv
+          ok = false;
+        }
+        speed[i] += line[i][j] / kLines;
+      }
+    }
+    if (!ok) continue;
+    const double top = *std::max_element(speed.begin(), speed.end());
+    const double bottom = *std::min_element(speed.begin(), speed.end());
+    if (!(top > 0) || !(top > kRatio * bottom)) continue;
+    const double floor = 1e-3 * top;  // keeps the map strictly increasing where the speed vanishes
+    // The mean must carry the variation: on every line, the speed left after
+    // stretching (line / mean) varies at most half as much as the mean does.
+    // Where lines differ in shape (a speed that grows along one side only),
+    // a map of the mean would squeeze some of them.
+    double left = 1;
+    for (int j = 0; j < kLines; ++j) {
+      double a = HUGE_VAL, b = 0;
+      for (int i = 0; i <= kIntervals; ++i) {
+        const double r = std::max(line[i][j], floor) / std::max(speed[i], floor);
+        a = std::min(a, r);
+        b = std::max(b, r);
+      }
+      left = std::max(left, b / a);
+    }
+    if (!(2 * left <= top / std::max(bottom, floor))) continue;
+    // w(u): the integral of the speed (floored so the map stays strictly
+    // increasing), scaled back onto [lo, hi].
+    std::vector<double> w(kIntervals + 1, 0.0);
+    for (int i = 1; i <= kIntervals; ++i) {
+      const double a = std::max(speed[i - 1], floor), b = std::max(speed[i], floor);
+      w[i] = w[i - 1] + 0.5 * (a + b) * (knot[i] - knot[i - 1]);
+    }
+    const double total = w.back();
+    for (double& x : w) x = lo + (hi - lo) * (x / total);
+    w.back() = hi;
+    axis_[d].u = std::move(knot);
+    axis_[d].w = std::move(w);
+  }
+}
+
+}  // namespace sizemesh
