@@ -38,7 +38,7 @@ Sampled sample_curve(const Geometry& g, const SizeFunction& h, int curve, int fa
     if (face > 0) {
       try {
         hk = h.at(face, g.eval_pcurve(curve, face, 0, s.t[k]), hint);
-      } catch (const std::exception&) {
+      } catch (const Error&) {  // no pcurve or size there: the size at the point in space
         hk = 0;
       }
     }

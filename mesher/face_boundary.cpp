@@ -34,7 +34,7 @@ std::vector<Entry> use_entries(const Geometry& g, const CurveMesh& cm, int face,
     try {
       part.push_back({cm.point_node[p], g.eval_pcurve(u.curve, face, u.side, t0), true});
       part.push_back({cm.point_node[p], g.eval_pcurve(u.curve, face, u.side, t1), true});
-    } catch (const std::exception&) {
+    } catch (const EvaluationError&) {
       part.clear();  // no pcurve: the gap between its neighbours becomes the pole segment
     }
   } else {

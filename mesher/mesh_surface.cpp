@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <memory>
+#include <new>
 
 #include <tbb/task_arena.h>
 #include <tbb/parallel_for.h>
@@ -34,7 +35,8 @@ struct FaceResult {
   double seconds_front = 0, seconds_optimise = 0;
 };
 
-// One face, start to end; never throws.
+// One face, start to end; a face the geometry cannot mesh is returned with its
+// reason, not thrown (only a bug escapes).
 FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& cm, int face,
                      const MeshOptions& o) {
   FaceResult r;
@@ -94,11 +96,11 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
       for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
       r.ok = true;
     }
-  } catch (const std::exception& e) {
+  } catch (const Error& e) {  // the kernel cannot evaluate the face, or its boundary is unusable
     r.reason = std::string("exception: ") + e.what();
-  } catch (...) {  // last resort: a kernel exception the geometry did not translate fails this face only
-    r.reason = "exception from the geometry kernel";
-  }
+  } catch (const std::bad_alloc&) {  // this face alone asked for too much: the others are kept
+    r.reason = "out of memory while meshing this face";
+  }  // anything else is a bug: it ends the run with its message rather than pass as a failed face
   r.size_queries = fs.size_queries;
   if (!r.ok) r.mesh = FaceMesh();
   return r;
@@ -112,7 +114,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
   CurveMesh cm;
   try {
     cm = discretise_curves(g, h);
-  } catch (const std::exception&) {  // nothing can be meshed without the curves
+  } catch (const Error&) {  // nothing can be meshed without the curves
     for (int f = 1; f <= g.num_faces(); ++f)
       out.failures.push_back({f, "the curves could not be discretised (geometry kernel error)"});
     return out;

@@ -50,7 +50,7 @@ UvStretch::UvStretch(const Geometry& g, int face) {
           const SurfaceD1 s = g.eval_face(face, uv);
           line[i][j] = (d == 0 ? s.du : s.dv).norm();
           ok = std::isfinite(line[i][j]);
-        } catch (const std::exception&) {  // not evaluable here: the face keeps its own uv
+        } catch (const EvaluationError&) {  // not evaluable here: the face keeps its own uv
           ok = false;
         }
         speed[i] += line[i][j] / kLines;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -50,7 +51,7 @@ int parse_id(const std::string& key, const std::string& section) {
   int id = 0;
   try {
     id = std::stoi(key, &pos);
-  } catch (...) {
+  } catch (const std::logic_error&) {  // std::stoi: not a number, or out of range
     pos = 0;
   }
   if (pos != key.size() || key.empty()) throw Error("config: '" + section + "' key '" + key + "' is not an id");

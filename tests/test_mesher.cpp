@@ -300,15 +300,18 @@ TEST_CASE("shared models at a resolving size: CAD area, conforming sizes, good a
 
 namespace {
 
-// A B-rep whose one face cannot be evaluated (the kernel throws there).
+// A B-rep whose one face cannot be evaluated (the kernel throws there, as the
+// geometry layer reports it: EvaluationError), or, with bug set, whose face
+// throws what only a programming error would (std::logic_error).
 class FaultyFace final : public Geometry {
  public:
-  FaultyFace(const Geometry& g, int bad) : g_(g), bad_(bad) {}
+  FaultyFace(const Geometry& g, int bad, bool bug = false) : g_(g), bad_(bad), bug_(bug) {}
   int num_faces() const override { return g_.num_faces(); }
   int num_curves() const override { return g_.num_curves(); }
   int num_points() const override { return g_.num_points(); }
   SurfaceD1 eval_face(int face, const Vec2& uv) const override {
-    if (face == bad_) throw std::runtime_error("surface evaluation failed");
+    if (face == bad_ && bug_) throw std::logic_error("index out of range");
+    if (face == bad_) throw EvaluationError("surface evaluation failed");
     return g_.eval_face(face, uv);
   }
   bool max_curvature(int face, const Vec2& uv, double& k) const override { return g_.max_curvature(face, uv, k); }
@@ -338,6 +341,7 @@ class FaultyFace final : public Geometry {
  private:
   const Geometry& g_;
   int bad_;
+  bool bug_;
 };
 
 // A size map with a hole: no positive size on one side of the model.
@@ -376,6 +380,12 @@ TEST_CASE("a face the kernel cannot evaluate is reported and the rest is kept", 
   const MeshQuality q = mesh_quality(m, faulty, h);
   CHECK(q.nonmanifold_edges == 0);
   CHECK(q.boundary_edges == 4 * 5);  // the face's four sides, 5 segments each
+}
+
+TEST_CASE("a programming error while meshing a face ends the run, not passed off as a failed face", "[mesher]") {
+  const Model box = model_from_shape(BRepPrimAPI_MakeBox(1.0, 1.0, 1.0).Shape());
+  const UniformSize h(0.2);
+  CHECK_THROWS_AS(mesh_surface(FaultyFace(box, 3, true), h), std::logic_error);
 }
 
 TEST_CASE("a failed face leaves every other face meshed exactly as before, and says why", "[mesher]") {
