@@ -29,11 +29,10 @@ double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, cons
 
 }  // namespace
 
-SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
-                          RefineStats* stats) {
+void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
+                       RefineStats* stats) {
   RefineStats s;
   s.vertices_before = bg.num_vertices();
-  SizeMap m = initial_sizes(g, bg, p, diagonal);
   for (int round = 0; round < kRefineMaxRounds && p.refine_background; ++round) {
     std::vector<double> h = m.h_initial;
     smooth_edges(bg, m.edge_log_beta, h);  // Eq. 12: what gradation leaves at the vertices
@@ -91,6 +90,12 @@ SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingPar
   }
   s.vertices_after = bg.num_vertices();
   if (stats) *stats = s;
+}
+
+SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
+                          RefineStats* stats) {
+  SizeMap m = initial_sizes(g, bg, p, diagonal);
+  refine_background(g, bg, p, diagonal, m, stats);
   return m;
 }
 

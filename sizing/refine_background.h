@@ -20,7 +20,8 @@
 // edge-graded sizes after each round, until no edge qualifies or kRefineMaxRounds
 // rounds have run.
 //
-// Inputs:  g geometry, bg background mesh (refined in place), p parameters, diagonal
+// Inputs:  g geometry, bg background mesh (refined in place), p parameters, diagonal,
+//          and the initial size map on bg
 // Output:  the initial size map on the refined background (not yet smoothed).
 #pragma once
 
@@ -42,6 +43,11 @@ constexpr double kRefineGain = 2.0;
 constexpr double kCurvatureMiss = 1.25;
 constexpr int kRefineMaxRounds = 8;
 
+// m: the initial size map on bg (initial_sizes()), replaced by the one on the
+// refined background.
+void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
+                       RefineStats* stats = nullptr);
+// Both steps: the initial sizes, then the refinement.
 SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
                           RefineStats* stats = nullptr);
 

@@ -9,6 +9,7 @@
 #include "mesher/quality.h"
 #include "mesher/target_sizes.h"
 #include "sizing/options.h"
+#include "sizing/initial_sizes.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/triangle_estimate.h"
@@ -121,9 +122,11 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
          info.first_failure);
   r->bg = build_background_mesh(model, o.tessellation);                      // geometry/ (paper 3.1)
   r->clock.lap("background");
-  r->sizes = refine_background(model, r->bg, r->params, info.diagonal(),     // sizing/   (3.2, 3.4)
-                               &report.refinement);
+  r->sizes = initial_sizes(model, r->bg, r->params, info.diagonal());       // sizing/   (3.2, 3.4)
   r->clock.lap("initial_sizes");
+  refine_background(model, r->bg, r->params, info.diagonal(), r->sizes,     // sizing/   (beyond the paper)
+                    &report.refinement);
+  r->clock.lap("refine_background");
   report.smoothing = smooth(r->bg, r->sizes, o.edge_solver);                 // sizing/   (3.3, Eq. 11-12)
   r->clock.lap("smoothing");
   r->estimate = estimate_triangles(r->bg, r->sizes.h, r->sizes.limit, model.num_faces());  // sizing/

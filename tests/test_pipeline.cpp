@@ -77,6 +77,10 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
       const auto& m = j["mesh"];
       INFO(m.dump());
       CHECK(m["failed_faces"].empty());
+      // Every stage of the pipeline has its time, under the name pipeline.cpp gives it.
+      for (const char* stage : {"load", "prepare", "background", "initial_sizes", "refine_background", "smoothing",
+                                "meshing", "quality", "output"})
+        CHECK(j["seconds"].contains(stage));
       CHECK(m["inverted_triangles"].get<double>() <= sm.max_inverted_share * m["triangles"].get<double>());
       // The geometry, not h_min, sets the mesh: at most 10% of the triangles
       // have a target size within 5% of h_min.
