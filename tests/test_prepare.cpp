@@ -166,7 +166,7 @@ TEST_CASE("two touching boxes give one closed surface with no internal face") {
   }
   const Model raw = model_from_shape(compound({BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 1.0, 1.0, 1.0).Shape(),
                                                BRepPrimAPI_MakeBox(gp_Pnt(1, 0, 0), 1.0, 1.0, 1.0).Shape()}),
-                                     LoadOptions{true, 1e-5, false});
+                                     LoadOptions{true, 1e-5, false, {}});
   CHECK(raw.num_faces() == 12);
   CHECK_FALSE(raw.info().preparation.fused);
 }
@@ -189,7 +189,7 @@ TEST_CASE("an internal planform plane between two open wing halves is taken out 
   b.MakeCompound(c);
   for (const auto& f : faces) b.Add(c, f);
 
-  const Model raw = model_from_shape(c, LoadOptions{true, 1e-5, false});
+  const Model raw = model_from_shape(c, LoadOptions{true, 1e-5, false, {}});
   CHECK_FALSE(raw.closed());
   const Model model = model_from_shape(c);
   const Preparation& p = model.info().preparation;
@@ -359,7 +359,7 @@ TEST_CASE("a closed solid passes through the preparation unchanged") {
 TEST_CASE("the shared OpenVSP aircraft close into one surface", "[models]") {
   for (const char* file : {"f16_openvsp.stp", "manta2_openvsp.stp"}) {
     SECTION(file) {
-      const Model raw = load_model(test::model_path(file), LoadOptions{true, 1e-5, false});
+      const Model raw = load_model(test::model_path(file), LoadOptions{true, 1e-5, false, {}});
       const Model model = load_model(test::model_path(file));
       const Preparation& p = model.info().preparation;
       CHECK_FALSE(raw.closed());
