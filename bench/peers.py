@@ -190,6 +190,7 @@ def sweep(a):
                 r = matched(curves.get((name, peer), []), d)
                 ratio.append("-" if r is None else "%s%.2f" % ("" if r[0] == "=" else r[0], n / r[1]))
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, tool, d, n, ratio[0], ratio[1]))
+    print_peer_levels(curves)
     with open(os.path.join(tmp, "curves.json"), "w") as f:
         json.dump({"%s|%s" % k: v for k, v in curves.items()}, f, indent=1)
     out = a.out or tmp
@@ -197,6 +198,24 @@ def sweep(a):
     write_sweep_csv(os.path.join(out, "sweep.csv"), rows)
     plot_sweep(os.path.join(out, "sweep.png"), curves)
     print("\nmeshes and curves.json in", tmp, "; sweep.csv and sweep.png in", out)
+
+
+def print_peer_levels(curves):
+    """The other way round: at each peer mesh's maximum distance, the triangles each sizemesh
+    curve needs (interpolated on it) over the peer's. Netgen gives one mesh per model, so this
+    is the only exact ratio against it."""
+    print("\nAt each peer mesh's maximum distance, triangles sizemesh needs (interpolated on its curve) / the peer's:\n")
+    print("| model | peer run | max dist/diag | peer triangles | sizemesh / peer | sizemesh-fidelity / peer |")
+    print("|---|---|---:|---:|---:|---:|")
+    for (name, peer), pts in curves.items():
+        if peer.startswith("sizemesh"):
+            continue
+        for d, n in pareto(pts):
+            ratio = []
+            for tool in ("sizemesh", "sizemesh-fidelity"):
+                r = matched(curves.get((name, tool), []), d)
+                ratio.append("-" if r is None else "%s%.2f" % ("" if r[0] == "=" else r[0], r[1] / n))
+            print("| %s | %s | %.2e | %d | %s | %s |" % (name, peer, d, n, ratio[0], ratio[1]))
 
 
 def write_sweep_csv(path, rows):
