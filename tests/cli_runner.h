@@ -1,6 +1,9 @@
 // Runs the sizemesh command in a shell and captures exit status and output.
 #pragma once
 
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -41,6 +44,15 @@ inline CommandResult run_sizemesh(const std::string& args, int timeout_s = 0) {
   std::remove((base + ".out").c_str());
   std::remove((base + ".err").c_str());
   return r;
+}
+
+// Runs sizemesh with args and `--report report`; the run must end with exit
+// status `expected` (its stderr is shown if not). Returns the parsed report.
+inline nlohmann::json run_with_report(const std::string& args, const std::string& report, int expected = 0) {
+  const CommandResult r = run_sizemesh(args + " --report " + report);
+  INFO(r.err);
+  REQUIRE(r.status == expected);
+  return nlohmann::json::parse(slurp(report));
 }
 
 }  // namespace sizemesh::test

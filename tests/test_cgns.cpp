@@ -108,11 +108,9 @@ std::string cgnscheck(const std::string& path) {
 
 TEST_CASE("CGNS of the M6 in a half far field: counts, sections, families and boundary conditions", "[cgns]") {
   sizemesh::test::TempDir dir("cgns_m6");
-  const auto r = run_sizemesh(sizemesh::test::model_path("onera_m6_wing.stp") + " -q --farfield sphere --symmetry y -o " +
-                              (dir / "m6.cgns") + " --report " + (dir / "m6.json"));
-  INFO(r.err);
-  REQUIRE(r.status == 0);
-  const auto report = nlohmann::json::parse(sizemesh::test::slurp(dir / "m6.json"));
+  const auto report = sizemesh::test::run_with_report(sizemesh::test::model_path("onera_m6_wing.stp") +
+                                                          " -q --farfield sphere --symmetry y -o " + (dir / "m6.cgns"),
+                                                      dir / "m6.json");
   const CgnsContents c = read_cgns(dir / "m6.cgns");
   CHECK(c.cell_dim == 2);
   CHECK(c.phys_dim == 3);
@@ -164,11 +162,8 @@ TEST_CASE("CGNS of the M6 in a half far field: counts, sections, families and bo
 
 TEST_CASE("CGNS of the F-16's wetted surface lists one family per component", "[cgns]") {
   sizemesh::test::TempDir dir("cgns_f16");
-  const auto r = run_sizemesh(sizemesh::test::model_path("f16_openvsp.stp") + " -q -o " + (dir / "f16.cgns") +
-                              " --report " + (dir / "f16.json"));
-  INFO(r.err);
-  REQUIRE(r.status == 0);
-  const auto report = nlohmann::json::parse(sizemesh::test::slurp(dir / "f16.json"));
+  const auto report = sizemesh::test::run_with_report(
+      sizemesh::test::model_path("f16_openvsp.stp") + " -q -o " + (dir / "f16.cgns"), dir / "f16.json");
   const CgnsContents c = read_cgns(dir / "f16.cgns");
   CHECK(c.cells == report["mesh"]["triangles"].get<long>());
   // The seven components after sewing all have faces on the wetted surface.

@@ -34,12 +34,9 @@ std::string scratch(const std::string& name) {
   return (fs::temp_directory_path() / ("sizemesh_pipe_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
-nlohmann::json run_and_report(const std::string& args, const std::string& tag, int expected_status = 0) {
+nlohmann::json run_and_report(const std::string& args, const std::string& tag) {
   const std::string report = scratch(tag + ".json");
-  const auto r = test::run_sizemesh(args + " -q --report " + report);
-  INFO(r.err);
-  CHECK(r.status == expected_status);
-  nlohmann::json j = nlohmann::json::parse(test::slurp(report));
+  nlohmann::json j = test::run_with_report(args + " -q", report);
   fs::remove(report);
   return j;
 }
