@@ -4,6 +4,16 @@
 #include <cmath>
 
 namespace sizemesh {
+namespace {
+
+// Unit du x dv, zero where the surface is singular (a pole, a stalled edge).
+Vec3 unit_normal(const SurfaceD1& d) {
+  const Vec3 n = d.du.cross(d.dv);
+  const double len = n.norm();
+  return len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len) : Vec3(Vec3::Zero());
+}
+
+}  // namespace
 
 FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
     : g_(g),
@@ -18,9 +28,7 @@ bool FaceSurface::turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2&
   try {
     // At the centroid in the surface's uv, as the quality report takes it.
     const Vec2 c = (to_surface(ua) + to_surface(ub) + to_surface(uc)) / 3.0;
-    const SurfaceD1 d = g_.eval_face(face_, c);
-    Vec3 nc = d.du.cross(d.dv);
-    if (!(nc.norm() > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()))) nc = Vec3::Zero();
+    const Vec3 nc = unit_normal(g_.eval_face(face_, c));
     return nc.squaredNorm() > 0 && !(nt.dot(nc) > 0);
   } catch (const EvaluationError&) {
     return true;
@@ -34,10 +42,7 @@ SurfaceSample FaceSurface::eval_shape(const Vec2& uv) const {
   s.p = d.p;
   s.du = d.du * slope.x();
   s.dv = d.dv * slope.y();
-  const Vec3 n = d.du.cross(d.dv);
-  const double len = n.norm();
-  s.n = len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len)
-                                                                            : Vec3(Vec3::Zero());
+  s.n = unit_normal(d);
   return s;
 }
 

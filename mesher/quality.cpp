@@ -21,8 +21,7 @@ namespace {
 struct TriangleMeasure {
   double area = 0, node_distance = 0, inner_node_distance = 0;
   bool zero_area = false, inverted = false;
-  std::array<double, 3> edge_ratio{};   // length / h(midpoint) of edge (k, k+1)
-  std::array<double, 3> edge_length{};  // length of edge (k, k+1)
+  std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
 };
 
 TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h, size_t t, int& hint) {
@@ -46,7 +45,6 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
     // Size at the edge's midpoint, looked up in the face's uv space.
     const int k1 = (k + 1) % 3;
     const double len = (m.xyz[tr[k1]] - m.xyz[tr[k]]).norm();
-    r.edge_length[k] = len;
     r.edge_ratio[k] = len / h.at(f, 0.5 * (uv[k] + uv[k1]), hint);
   }
   return r;
@@ -141,7 +139,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       if (on_boundary && !along_curve && ratio[e] < kNarrow) {
         forced = true;
         ++q.narrow_below_12;
-      } else if (ratio[e] < kNarrow && short_curve_segment(a, b, per[t].edge_length[e] / ratio[e])) {
+      } else if (ratio[e] < kNarrow && short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e])) {
         forced = true;
         ++q.short_curve_below_12;
       }

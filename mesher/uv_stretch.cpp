@@ -10,21 +10,24 @@ namespace {
 constexpr int kIntervals = 96;  // knots of a map
 constexpr int kLines = 8;       // lines across the face averaged into a direction's speed
 
+// The knot interval [i - 1, i] of increasing knots that holds x; outside
+// the range, the end interval (whose line then extends the map).
+size_t interval(const std::vector<double>& knots, double x) {
+  const size_t i = std::upper_bound(knots.begin(), knots.end(), x) - knots.begin();
+  return std::clamp<size_t>(i, 1, knots.size() - 1);
+}
+
 }  // namespace
 
 double UvStretch::Axis::interpolate(const std::vector<double>& from, const std::vector<double>& to, double x) {
-  const size_t n = from.size();
-  size_t i = std::upper_bound(from.begin(), from.end(), x) - from.begin();
-  i = std::clamp<size_t>(i, 1, n - 1);  // outside the range: the end interval's line
+  const size_t i = interval(from, x);
   const double t = (x - from[i - 1]) / (from[i] - from[i - 1]);
   return to[i - 1] + t * (to[i] - to[i - 1]);
 }
 
 double UvStretch::Axis::slope(double x) const {
   if (w.empty()) return 1.0;
-  const size_t n = w.size();
-  size_t i = std::upper_bound(w.begin(), w.end(), x) - w.begin();
-  i = std::clamp<size_t>(i, 1, n - 1);
+  const size_t i = interval(w, x);
   return (u[i] - u[i - 1]) / (w[i] - w[i - 1]);
 }
 
