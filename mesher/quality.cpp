@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "geometry/predicates.h"
@@ -62,12 +63,16 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 // on the two curves that meet there: where the wedge is narrower than its
 // boundary segments, a triangle spanning it cannot have larger angles.
 //
-// And in a face narrower than the elements: every node on the face's
-// boundary, and the shortest edge spans the face (its ends are not on one
-// curve) at under tan(12 deg) of the wanted size. The boundary is split at
-// about the wanted size, so such a triangle has a side of about h and a
-// height under h tan(12 deg): no triangle spanning that face can do better
-// unless the size map goes below h_min.
+// And in a face narrower than the elements, every node on the face's
+// boundary and the triangle spanning the face: either its shortest edge joins
+// two curves (its ends are not on one curve) at under tan(12 deg) of the
+// wanted size, or at most one of its edges is a segment of the boundary (it
+// runs from one part of the boundary to another; the two branches of a curve
+// folding back on itself count, a boundary ear does not) and its height over
+// its longest edge is under tan(12 deg) of the smallest wanted size at its
+// edges. The face is that narrow there, its boundary is split at about the
+// wanted size, and no triangle spanning it can do better unless the size map
+// goes below h_min.
 void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::vector<TriangleMeasure>& per,
                           MeshQuality& q) {
   const double kNarrow = std::tan(12.0 * 3.14159265358979323846 / 180.0);
@@ -116,6 +121,21 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
         if (m.node_dim[other] == 1) w.insert({1, m.node_entity[other]});
       }
     }
+  // Edges of every thin triangle, and how many triangles of its face use each:
+  // one for a segment of the face's boundary, two for an edge inside it.
+  auto edge_key = [&](size_t t, int k) {
+    const int a = m.tris[t][k], b = m.tris[t][(k + 1) % 3];
+    return std::make_tuple(std::min(a, b), std::max(a, b), m.tri_face[t]);
+  };
+  std::map<std::tuple<int, int, int>, int> uses;
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    if (q.min_angle[t] < 12)
+      for (int k = 0; k < 3; ++k) uses[edge_key(t, k)] = 0;
+  for (size_t t = 0; t < m.tris.size() && !uses.empty(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = uses.find(edge_key(t, k));
+      if (it != uses.end()) ++it->second;
+    }
   for (size_t t = 0; t < m.tris.size(); ++t) {
     if (!(q.min_angle[t] < 12)) continue;
     const auto a = corner_angles(m, t);
@@ -135,8 +155,18 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       const int e = static_cast<int>(std::min_element(ratio.begin(), ratio.end()) - ratio.begin());
       const int a = tr[e], b = tr[(e + 1) % 3];
       const bool on_boundary = m.node_dim[tr[0]] <= 1 && m.node_dim[tr[1]] <= 1 && m.node_dim[tr[2]] <= 1;
+      int boundary_segments = 0;
+      double h = HUGE_VAL, longest = 0;
+      for (int k = 0; k < 3; ++k) {
+        boundary_segments += uses[edge_key(t, k)] < 2;
+        const double len = (m.xyz[tr[(k + 1) % 3]] - m.xyz[tr[k]]).norm();
+        longest = std::max(longest, len);
+        if (ratio[k] > 0) h = std::min(h, len / ratio[k]);
+      }
+      const double width = longest > 0 ? 2 * per[t].area / longest : 0;  // height over the longest edge
       const bool along_curve = m.node_dim[a] == 1 && m.node_dim[b] == 1 && m.node_entity[a] == m.node_entity[b];
-      if (on_boundary && !along_curve && ratio[e] < kNarrow) {
+      const bool spans = (boundary_segments <= 1 && width < kNarrow * h) || (!along_curve && ratio[e] < kNarrow);
+      if (on_boundary && spans) {
         forced = true;
         ++q.narrow_below_12;
       } else if (ratio[e] < kNarrow && short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e])) {

@@ -18,8 +18,10 @@
 //   there) is under 12 degrees, a triangle whose smallest angle sits at that
 //   point, or whose nodes all lie on the two curves meeting there (spanning
 //   the corner's narrow wedge), is forced by the CAD; so is a triangle with
-//   every node on its face's boundary whose shortest edge spans the face at
-//   under h tan(12 deg) (a face narrower than the elements), and one whose
+//   every node on its face's boundary whose shortest edge spans the face (an
+//   edge inside the face, not a boundary segment) at under h tan(12 deg) (a
+//   face, or the fold of a curve turning back on itself, narrower than the
+//   elements), and one whose
 //   shortest edge, under h tan(12 deg), is a segment of a B-rep curve itself
 //   shorter than h (a CAD curve shorter than the elements, e.g. one split
 //   only because it turns sharply).
