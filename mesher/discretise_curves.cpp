@@ -1,10 +1,13 @@
 #include "mesher/discretise_curves.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include <tbb/parallel_for.h>
+
+#include "mesher/sharp_corners.h"
 
 namespace sizemesh {
 namespace {
@@ -15,17 +18,13 @@ constexpr double kMaxTurnPerSegment = kPi / 3;
 // Guard against a size map far below the model's scale.
 constexpr int kMaxSegments = 1000000;
 
-// Integral of ds/h along a curve sampled at m+1 parameters (trapezoid on chords).
-struct Sampled {
-  std::vector<double> t, F;  // F[k] = metric length from t0 to t[k]
-  double turning = 0;        // total tangent turning (radians)
-};
-
-Sampled sample_curve(const Geometry& g, const SizeFunction& h, int curve, int face, int m,
+// A curve sampled at m+1 equal parameter steps: Eq. 1a's integral of ds/h by
+// the trapezoid rule on chords, arc length and tangent turning.
+CurveSamples sample_curve(const Geometry& g, const SizeFunction& h, int curve, int face, int m,
                      long long& queries) {
   double t0, t1;
   g.curve_range(curve, t0, t1);
-  Sampled s;
+  CurveSamples s;
   s.t.resize(m + 1);
   s.F.assign(m + 1, 0.0);
   std::vector<Vec3> p(m + 1);
@@ -46,35 +45,45 @@ Sampled sample_curve(const Geometry& g, const SizeFunction& h, int curve, int fa
     ++queries;
     hs[k] = hk > 0 && std::isfinite(hk) ? hk : std::numeric_limits<double>::infinity();  // no size: no bound
   }
+  s.S.assign(m + 1, 0.0);
+  s.T.assign(m + 1, 0.0);
+  s.h0 = hs[0];
+  s.h1 = hs[m];
   for (int k = 1; k <= m; ++k) {
     const double ds = (p[k] - p[k - 1]).norm();
     s.F[k] = s.F[k - 1] + 0.5 * ds * (1.0 / hs[k - 1] + 1.0 / hs[k]);  // Eq. 1a
+    s.S[k] = s.S[k - 1] + ds;
   }
   Vec3 prev = Vec3::Zero();
   for (int k = 1; k <= m; ++k) {
     Vec3 d = p[k] - p[k - 1];
+    s.T[k] = s.turning;
     if (d.norm() <= 0) continue;
     d.normalize();
     if (prev.norm() > 0) s.turning += std::acos(std::clamp(prev.dot(d), -1.0, 1.0));
+    s.T[k] = s.turning;
     prev = d;
   }
   return s;
 }
 
-// Parameters at equal steps of the metric length (Eq. 1b).
-std::vector<double> place_nodes(const Sampled& s, int n) {
-  std::vector<double> t(n + 1);
-  t[0] = s.t.front();
-  t[n] = s.t.back();
-  const double total = s.F.back();
-  size_t k = 1;
-  for (int i = 1; i < n; ++i) {
-    const double target = total * i / n;
-    while (k + 1 < s.F.size() && s.F[k] < target) ++k;
-    const double f0 = s.F[k - 1], f1 = s.F[k];
-    const double a = f1 > f0 ? (target - f0) / (f1 - f0) : 0.5;
-    t[i] = s.t[k - 1] + a * (s.t[k] - s.t[k - 1]);
-  }
+// Parameters of a curve's n+1 nodes. Between its ends, or between the ends of
+// the long first segments lead[0] (at t0) and lead[1] (at t1) where a sharp
+// corner asks for them, nodes sit at equal steps of the metric length (Eq. 1b).
+std::vector<double> place_nodes(const CurveSamples& s, int n, const std::array<double, 2>& lead) {
+  const bool a = lead[0] > 0, b = lead[1] > 0;
+  const SamplePos ia = a ? sample_pos(s.S, lead[0]) : SamplePos{1, 0.0};
+  const SamplePos ib = b ? sample_pos(s.S, s.S.back() - lead[1]) : SamplePos{s.t.size() - 1, 1.0};
+  const int mid = n - a - b;
+  std::vector<double> t;
+  t.reserve(n + 1);
+  t.push_back(s.t.front());
+  const double Fa = sample_at(s.F, ia), Fb = sample_at(s.F, ib);
+  for (int i = a ? 0 : 1; i <= (b ? mid : mid - 1); ++i)
+    t.push_back(sample_at(s.t, sample_pos(s.F, Fa + (Fb - Fa) * i / mid)));
+  t.push_back(s.t.back());
+  if (a) t[1] = sample_at(s.t, ia);
+  if (b) t[n - 1] = sample_at(s.t, ib);
   return t;
 }
 
@@ -104,20 +113,20 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
 
   // Segment counts, Eq. 1a; sampled per curve in parallel.
   std::vector<int> n(nc + 1, 0);
-  std::vector<Sampled> sampled(nc + 1);
+  std::vector<CurveSamples> sampled(nc + 1);
   std::vector<long long> queries(nc + 1, 0);
   tbb::parallel_for(1, nc + 1, [&](int c) {
     if (g.curve_degenerated(c)) return;
     int nn = 1;
     try {
-      Sampled coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
+      CurveSamples coarse = sample_curve(g, h, c, curve_face[c], 32, queries[c]);
       const int m = static_cast<int>(std::clamp(8 * coarse.F.back() + 32, 32.0, 4000.0));
       sampled[c] = m > 32 ? sample_curve(g, h, c, curve_face[c], m, queries[c]) : std::move(coarse);
       const double integral = std::min(sampled[c].F.back(), double(kMaxSegments));
       nn = std::max(1, static_cast<int>(std::lround(integral)));
       nn = std::max(nn, static_cast<int>(std::ceil(sampled[c].turning / kMaxTurnPerSegment - 1e-9)));
     } catch (const EvaluationError&) {  // the kernel cannot evaluate it: equal parameter steps
-      sampled[c] = Sampled();
+      sampled[c] = CurveSamples();
       double t0, t1;
       g.curve_range(c, t0, t1);
       for (int k = 0; k <= 8; ++k) {
@@ -129,6 +138,21 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
     n[c] = nn;
   });
   for (int c = 1; c <= nc; ++c) out.size_queries += queries[c];
+
+  // Sharp corners (mesher/sharp_corners.h): long first segments; the rest of
+  // such a curve is counted again (Eq. 1a) between them.
+  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled);
+  for (int c = 1; c <= nc; ++c) {
+    const auto& lead = leads[c];
+    const CurveSamples& s = sampled[c];
+    if (lead[0] <= 0 && lead[1] <= 0) continue;
+    const SamplePos ia = sample_pos(s.S, lead[0]), ib = sample_pos(s.S, s.S.back() - lead[1]);
+    const double metric = std::min(sample_at(s.F, ib) - sample_at(s.F, ia), double(kMaxSegments));
+    const double turning = sample_at(s.T, ib) - sample_at(s.T, ia);
+    int mid = std::max(1, static_cast<int>(std::lround(metric)));
+    mid = std::max(mid, static_cast<int>(std::ceil(turning / kMaxTurnPerSegment - 1e-9)));
+    n[c] = mid + (lead[0] > 0) + (lead[1] > 0);
+  }
 
   // Every boundary loop needs at least 3 segments (a seam used twice counts twice).
   for (int f = 1; f <= nf; ++f)
@@ -156,7 +180,7 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
   for (int c = 1; c <= nc; ++c) {
     if (g.curve_degenerated(c) || n[c] == 0) continue;
     CurveNodes& cn = out.curves[c];
-    cn.t = place_nodes(sampled[c], n[c]);
+    cn.t = place_nodes(sampled[c], n[c], leads[c]);
     cn.node.resize(n[c] + 1);
     cn.node[0] = point_or_new(g.curve_start_point(c), c, cn.t[0]);
     cn.node[n[c]] = point_or_new(g.curve_end_point(c), c, cn.t[n[c]]);

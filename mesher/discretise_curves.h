@@ -36,7 +36,9 @@ struct CurveMesh {
 // Segment count and node placement per curve: n = max(1, round(integral ds/h))
 // (Eq. 1a), nodes at equal steps of that integral (Eq. 1b). Beyond the paper,
 // for valid loops in uv when h exceeds a curve's radius: no segment turns more
-// than 60 degrees, closed curves and boundary loops get at least 3 segments.
+// than 60 degrees, closed curves and boundary loops get at least 3 segments,
+// and the curves of a sharp corner start with one long segment
+// (mesher/sharp_corners.h).
 // Degenerate curves (poles) get none.
 CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h);
 

@@ -7,9 +7,12 @@
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <gp_Ax2.hxx>
@@ -166,6 +169,41 @@ TEST_CASE("closed curves and small loops get enough segments for a valid loop", 
   const SurfaceMesh m = mesh_surface(cyl, h);
   const MeshQuality q = mesh_quality(m, cyl, h);
   require_valid_closed(cyl, m, q, 1.0);
+}
+
+TEST_CASE("a sharp corner gets one thin triangle: long first segments where its wedge is a quarter element wide", "[mesher]") {
+  // A prism over a triangle whose apex angle is 4 degrees: with equal steps
+  // of h along both sides, the first ~6 triangles of each cap's wedge are
+  // under 12 degrees; with the long first segments only the apex triangle is.
+  const double half = 3.5, len = 100, h = 2;
+  BRepBuilderAPI_MakePolygon profile(gp_Pnt(0, 0, 0), gp_Pnt(len, half, 0), gp_Pnt(len, -half, 0), true);
+  const TopoDS_Shape prism =
+      BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(profile.Wire()).Face(), gp_Vec(0, 0, 20)).Shape();
+  const Model model = model_from_shape(prism);
+  const UniformSize size(h);
+  const double alpha = 2 * std::atan(half / len);
+  const double r = 0.25 * h / std::tan(alpha);  // the wedge is h/4 wide there
+  const CurveMesh cm = discretise_curves(model, size);
+  int long_sides = 0;
+  for (int c = 1; c <= model.num_curves(); ++c) {
+    const auto& nodes = cm.curves[c].node;
+    if (std::abs(model.curve_length(c) - std::hypot(len, half)) > 1e-6) continue;
+    ++long_sides;
+    // The node next to the apex (x = 0) is r away from it, the others about h apart.
+    const bool apex_first = cm.xyz[nodes.front()].x() < 1e-9;
+    const Vec3 apex = cm.xyz[apex_first ? nodes.front() : nodes.back()];
+    const Vec3 next = cm.xyz[apex_first ? nodes[1] : nodes[nodes.size() - 2]];
+    CHECK((next - apex).norm() == Approx(r).epsilon(1e-3));
+    const int ordinary = static_cast<int>(nodes.size()) - 2;
+    CHECK(ordinary == static_cast<int>(std::lround((model.curve_length(c) - r) / h)));
+  }
+  CHECK(long_sides == 4);
+  const SurfaceMesh m = mesh_surface(model, size);
+  const MeshQuality q = mesh_quality(m, model, size);
+  require_valid_closed(model, m, q, 1.0);
+  CHECK(q.below_12 == 2);  // one apex triangle per cap, with the CAD's 4 degrees
+  CHECK(q.forced_below_12 == 2);
+  CHECK(q.worst_angle == Approx(alpha * 180 / 3.14159265358979323846).epsilon(0.02));
 }
 
 TEST_CASE("OCCT solids mesh watertight, valid, on the CAD area, with good angles", "[mesher]") {
