@@ -21,7 +21,7 @@ constexpr int kMaxSegments = 1000000;
 // A curve sampled at m+1 equal parameter steps: Eq. 1a's integral of ds/h by
 // the trapezoid rule on chords, arc length and tangent turning.
 CurveSamples sample_curve(const Geometry& g, const SizeFunction& h, int curve, int face, int m,
-                     long long& queries) {
+                          long long& queries) {
   double t0, t1;
   g.curve_range(curve, t0, t1);
   CurveSamples s;

@@ -108,18 +108,60 @@ int swap_sweep(FaceMesh& fm, const FaceSurface& fs, std::vector<std::array<int, 
 // One sweep of smoothing: each inner node moves towards the mean of its
 // neighbours in space (one Gauss-Newton step in uv), kept only if the worst
 // shape around it does not get worse.
-int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
-  const int n = fm.num_nodes();
-  std::vector<int> start(n + 1, 0), tri_of;
-  for (const auto& t : fm.tris)
-    for (int v : t) ++start[v + 1];
-  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
-  tri_of.resize(start[n]);
-  {
+// Triangles around every node: those of node i are tri_of[start[i] .. start[i+1]).
+struct Balls {
+  std::vector<int> start, tri_of;
+  explicit Balls(const FaceMesh& fm) {
+    const int n = fm.num_nodes();
+    start.assign(n + 1, 0);
+    for (const auto& t : fm.tris)
+      for (int v : t) ++start[v + 1];
+    for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+    tri_of.resize(start[n]);
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
       for (int v : fm.tris[t]) tri_of[fill[v]++] = t;
   }
+};
+
+// Worst of a measure over node i's triangles with i moved to (uv, s): shape
+// (measure_angle false), or the smallest corner angle in degrees less 1000
+// per triangle under 12 degrees (fewer thin triangles first, then the
+// largest smallest angle); -1 (shape) or -1e9 (angle) if one of them becomes
+// invalid.
+double ball_worst(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
+                  const SurfaceSample& s, bool measure_angle) {
+  const double invalid = measure_angle ? -1e9 : -1;
+  double worst = measure_angle ? 180 : 2, thin = 0;
+  for (int e = b.start[i]; e < b.start[i + 1]; ++e) {
+    const auto& tr = fm.tris[b.tri_of[e]];
+    Vec2 u[3];
+    const SurfaceSample* p[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
+      p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
+    }
+    if (fm.pole_triangle(tr)) {
+      if (!(orient(u[0], u[1], u[2]) > 0)) return invalid;
+      continue;
+    }
+    const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
+    if (q < 0) return invalid;
+    if (!measure_angle) {
+      worst = std::min(worst, q);
+      continue;
+    }
+    const double angle = min_angle_deg(p[0]->p, p[1]->p, p[2]->p);
+    worst = std::min(worst, angle);
+    thin += angle < 12;
+  }
+  return worst - 1000 * thin;
+}
+
+int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
+  const int n = fm.num_nodes();
+  const Balls balls(fm);
+  const std::vector<int>&start = balls.start, &tri_of = balls.tri_of;
   int moved = 0;
   for (int i = 0; i < n; ++i) {
     if (fm.boundary(i) || start[i] == start[i + 1]) continue;
@@ -153,25 +195,8 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
         continue;  // outside what the surface can evaluate: stay
       }
       s.h = si.h;
-      double new_q = 2;
-      bool ok = true;
-      for (int e = start[i]; e < start[i + 1] && ok; ++e) {
-        const auto& tr = fm.tris[tri_of[e]];
-        Vec2 u[3];
-        const SurfaceSample* p[3];
-        for (int k = 0; k < 3; ++k) {
-          u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
-          p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
-        }
-        if (fm.pole_triangle(tr)) {
-          ok = orient(u[0], u[1], u[2]) > 0;
-          continue;
-        }
-        const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
-        if (q < 0) ok = false;
-        new_q = std::min(new_q, q);
-      }
-      if (!ok || new_q < old_q) continue;
+      const double new_q = ball_worst(fm, fs, balls, i, uv, s, false);
+      if (new_q < 0 || new_q < old_q) continue;
       fm.uv[i] = uv;
       fm.s[i] = s;
       ++moved;
@@ -183,6 +208,68 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
 
 }  // namespace
 
+int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
+  constexpr double kRescueBelow = 15;
+  const Balls balls(fm);
+  int moved = 0;
+  for (int i = 0; i < fm.num_nodes(); ++i) {
+    if (fm.boundary(i) || balls.start[i] == balls.start[i + 1]) continue;
+    double smallest = 180;  // from the positions alone, before any surface evaluation
+    for (int e = balls.start[i]; e < balls.start[i + 1]; ++e) {
+      const auto& t = fm.tris[balls.tri_of[e]];
+      smallest = std::min(smallest, min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p));
+    }
+    if (!(smallest < kRescueBelow)) continue;
+    Vec2 uv = fm.uv[i];
+    SurfaceSample s = fm.s[i];
+    double best = ball_worst(fm, fs, balls, i, uv, s, true);
+    if (!(best > -1e8 && best < kRescueBelow)) continue;
+    const double start_value = best;
+    double step = 0;  // a third of the mean edge in uv
+    for (int e = balls.start[i]; e < balls.start[i + 1]; ++e)
+      for (int v : fm.tris[balls.tri_of[e]]) step += (fm.uv[v] - uv).norm();
+    step /= 6.0 * (balls.start[i + 1] - balls.start[i]);
+    for (int it = 0; it < 40 && step > 0; ++it) {
+      bool improved = false;
+      Vec2 best_uv = uv;
+      SurfaceSample best_s = s;
+      for (int d = 0; d < 8; ++d) {
+        const double a = d * 3.14159265358979323846 / 4;
+        const Vec2 trial = uv + step * Vec2(std::cos(a), std::sin(a));
+        SurfaceSample ts;
+        try {
+          ts = fs.eval_shape(trial);
+        } catch (const EvaluationError&) {
+          continue;
+        }
+        ts.h = fm.s[i].h;
+        const double v = ball_worst(fm, fs, balls, i, trial, ts, true);
+        if (v > best + 1e-9) {
+          best = v;
+          best_uv = trial;
+          best_s = ts;
+          improved = true;
+        }
+      }
+      if (improved) {
+        uv = best_uv;
+        s = best_s;
+      } else {
+        step *= 0.5;
+      }
+    }
+    // Kept when it leaves fewer thin triangles, or none and a larger smallest
+    // angle: a thin triangle traded for another one would only move it.
+    auto thin = [](double v) { return std::lround((90 - v) / 1000); };
+    if (thin(best) < thin(start_value) || (thin(start_value) == 0 && best > start_value + 1e-6)) {
+      fm.uv[i] = uv;
+      fm.s[i] = s;
+      ++moved;
+    }
+  }
+  return moved;
+}
+
 void optimise(FaceMesh& fm, FaceSurface& fs, int passes) {
   if (passes <= 0 || fm.tris.empty()) return;
   std::vector<std::array<int, 3>> nbr = neighbours(fm);
@@ -193,6 +280,9 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes) {
   }
   for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
   }
+  if (rescue_thin_triangles(fm, fs) > 0)
+    for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
+    }
 }
 
 }  // namespace sizemesh

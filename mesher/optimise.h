@@ -1,6 +1,7 @@
 // Mesh improvement of one face after the front closes: edge swaps judged by
-// shape in space, and smoothing of the nodes inside the face (moved in uv,
-// evaluated on the surface). Validity is kept throughout: triangles stay
+// shape in space, smoothing of the nodes inside the face (moved in uv,
+// evaluated on the surface), and a last search for nodes next to thin
+// triangles. Validity is kept throughout: triangles stay
 // counter-clockwise in uv and facing the surface normal in space; boundary
 // nodes and edges are fixed.
 //
@@ -12,5 +13,13 @@
 namespace sizemesh {
 
 void optimise(FaceMesh& fm, FaceSurface& fs, int passes);
+
+// Inner nodes next to a triangle under 15 degrees, which smoothing towards
+// the neighbours' mean can leave there (a node far off a short boundary
+// segment): a pattern search in uv for the position with the fewest
+// triangles under 12 degrees around the node, then the largest smallest
+// angle. A move is kept when it leaves fewer triangles under 12 degrees, or
+// none and a larger smallest angle. Returns the nodes moved.
+int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs);
 
 }  // namespace sizemesh

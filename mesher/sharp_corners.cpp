@@ -120,7 +120,13 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
         Corner c;
         c.side[0] = {uses[i].curve, uses[i].reversed ? 0 : 1};  // use i ends at the corner
         c.side[1] = {uses[j].curve, uses[j].reversed ? 1 : 0};  // use j starts there
-        const Vec3 d0 = leads.leaving(c.side[0]), d1 = leads.leaving(c.side[1]);
+        Vec3 d0, d1;
+        try {
+          d0 = leads.leaving(c.side[0]);
+          d1 = leads.leaving(c.side[1]);
+        } catch (const EvaluationError&) {  // no tangent there: not a corner this rule can judge
+          continue;
+        }
         if (!(d0.norm() > 0) || !(d1.norm() > 0)) continue;
         c.alpha = std::acos(std::clamp(d0.dot(d1), -1.0, 1.0));
         if (c.alpha >= kPropagate) continue;
@@ -149,7 +155,11 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
   // at alpha is kWedgeWidth h wide, at most kMaxLead elements out.
   for (const Corner& c : corners) {
     const double most = std::min({kMaxLead * c.h, leads.room(c.side[0], c.h), leads.room(c.side[1], c.h)});
-    if (!(most > c.h) || leads.width(c, c.h) >= kWedgeWidth * c.h) continue;
+    try {
+      if (!(most > c.h) || leads.width(c, c.h) >= kWedgeWidth * c.h) continue;
+    } catch (const EvaluationError&) {  // the kernel cannot evaluate a curve there: equal steps
+      continue;
+    }
     const double r = c.alpha > 0 ? std::min(most, kWedgeWidth * c.h / std::tan(c.alpha)) : most;
     if (!(r > c.h)) continue;
     leads.apply(c.side[0], r);

@@ -22,8 +22,10 @@
 #include <string>
 
 #include "geometry/occt_model.h"
+#include "geometry/predicates.h"
 #include "mesher/discretise_curves.h"
 #include "mesher/mesh_surface.h"
+#include "mesher/optimise.h"
 #include "mesher/quality.h"
 #include "mesher/uv_stretch.h"
 #include "mesher/face_surface.h"
@@ -605,4 +607,35 @@ TEST_CASE("a parametrisation whose speed varies strongly is stretched towards ar
         worst = std::max(worst, (rect.eval_face(1, m.tri_uv[t][k]).p - m.xyz[m.tris[t][k]]).norm());
     CHECK(worst <= 1e-9);
   }
+}
+
+TEST_CASE("a node left far off a short boundary edge is moved until no thin triangle is left", "[mesher]") {
+  // A 10 x 10 square with a boundary node halfway along its bottom side and
+  // one inner node near the bottom right corner, fanned to the boundary:
+  // three of the five triangles are under 12 degrees.
+  const DistortedRectangle square(10.0, 10.0);
+  const UniformSize h(5.0);
+  FaceSurface fs(square, h, 1);
+  FaceMesh fm;
+  fm.face = 1;
+  const Vec2 at[] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}, {0.95, 0.08}};  // the surface's uv
+  std::vector<Vec2> uv;
+  for (int k = 0; k < 6; ++k) {
+    uv.push_back(fs.to_mesher(at[k]));
+    fm.add_node(uv[k], fs.eval(uv[k]), k < 5 ? k : -1);
+  }
+  fm.loops = {{0, 1, 2, 3, 4}};
+  fm.tris = {{0, 1, 5}, {1, 2, 5}, {2, 3, 5}, {3, 4, 5}, {4, 0, 5}};
+  auto thin = [&] {
+    int n = 0;
+    for (const auto& t : fm.tris) n += min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p) < 12;
+    return n;
+  };
+  REQUIRE(thin() == 3);
+  CHECK(rescue_thin_triangles(fm, fs) == 1);
+  CHECK(thin() == 0);
+  for (int k = 0; k < 5; ++k) CHECK(fm.uv[k] == uv[k]);  // the boundary stays
+  for (const auto& t : fm.tris) CHECK(orient(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]]) > 0);
+  CHECK((fm.s[5].p - square.eval_face(1, fs.to_surface(fm.uv[5])).p).norm() <= 1e-12);
+  CHECK(rescue_thin_triangles(fm, fs) == 0);  // nothing under 15 degrees is left to move
 }
