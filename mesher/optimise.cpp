@@ -128,9 +128,12 @@ struct Balls {
 // (measure_angle false), or the smallest corner angle in degrees less 1000
 // per triangle under 12 degrees (fewer thin triangles first, then the
 // largest smallest angle); -1 (shape) or -1e9 (angle) if one of them becomes
-// invalid.
+// invalid. `lenient` (angle only), per triangle of the ball: it already
+// failed the shape's validity (the surface's normal turns more than 60
+// degrees within it) and need only stay counter-clockwise in uv and not
+// turned against the surface at its centroid, the report's inverted test.
 double ball_worst(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
-                  const SurfaceSample& s, bool measure_angle) {
+                  const SurfaceSample& s, bool measure_angle, const std::vector<char>* lenient = nullptr) {
   const double invalid = measure_angle ? -1e9 : -1;
   double worst = measure_angle ? 180 : 2, thin = 0;
   for (int e = b.start[i]; e < b.start[i + 1]; ++e) {
@@ -145,8 +148,14 @@ double ball_worst(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int
       if (!(orient(u[0], u[1], u[2]) > 0)) return invalid;
       continue;
     }
-    const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
-    if (q < 0) return invalid;
+    double q = 0;
+    if (lenient && (*lenient)[e - b.start[i]]) {
+      const Vec3 nt = (p[1]->p - p[0]->p).cross(p[2]->p - p[0]->p);
+      if (!(orient(u[0], u[1], u[2]) > 0) || fs.turned_at_centroid(u[0], u[1], u[2], nt)) return invalid;
+    } else {
+      q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
+      if (q < 0) return invalid;
+    }
     if (!measure_angle) {
       worst = std::min(worst, q);
       continue;
@@ -222,7 +231,12 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
     if (!(smallest < kRescueBelow)) continue;
     Vec2 uv = fm.uv[i];
     SurfaceSample s = fm.s[i];
-    double best = ball_worst(fm, fs, balls, i, uv, s, true);
+    std::vector<char> lenient;  // triangles that fail the shape's validity as they are
+    for (int e = balls.start[i]; e < balls.start[i + 1]; ++e) {
+      const auto& t = fm.tris[balls.tri_of[e]];
+      lenient.push_back(!fm.pole_triangle(t) && shape(fm, fs, t) < 0);
+    }
+    double best = ball_worst(fm, fs, balls, i, uv, s, true, &lenient);
     if (!(best > -1e8 && best < kRescueBelow)) continue;
     const double start_value = best;
     double step = 0;  // a third of the mean edge in uv
@@ -243,7 +257,7 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
           continue;
         }
         ts.h = fm.s[i].h;
-        const double v = ball_worst(fm, fs, balls, i, trial, ts, true);
+        const double v = ball_worst(fm, fs, balls, i, trial, ts, true, &lenient);
         if (v > best + 1e-9) {
           best = v;
           best_uv = trial;

@@ -19,7 +19,11 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes);
 // segment): a pattern search in uv for the position with the fewest
 // triangles under 12 degrees around the node, then the largest smallest
 // angle. A move is kept when it leaves fewer triangles under 12 degrees, or
-// none and a larger smallest angle. Returns the nodes moved.
+// none and a larger smallest angle. Triangles valid before stay valid; one
+// that already fails validity (the surface's normal turning over 60 degrees
+// within it, where a surface curls within an element) need only stay
+// counter-clockwise in uv and not turned against the surface at its centroid.
+// Returns the nodes moved.
 int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs);
 
 }  // namespace sizemesh
