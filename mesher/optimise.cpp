@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "geometry/predicates.h"
+#include "geometry/vertex_triangles.h"
 
 namespace sizemesh {
 namespace {
@@ -105,38 +106,33 @@ int swap_sweep(FaceMesh& fm, const FaceSurface& fs, std::vector<std::array<int, 
   return swaps;
 }
 
-// One sweep of smoothing: each inner node moves towards the mean of its
-// neighbours in space (one Gauss-Newton step in uv), kept only if the worst
-// shape around it does not get worse.
 // Triangles around every node: those of node i are tri_of[start[i] .. start[i+1]).
 struct Balls {
   std::vector<int> start, tri_of;
-  explicit Balls(const FaceMesh& fm) {
-    const int n = fm.num_nodes();
-    start.assign(n + 1, 0);
-    for (const auto& t : fm.tris)
-      for (int v : t) ++start[v + 1];
-    for (int i = 0; i < n; ++i) start[i + 1] += start[i];
-    tri_of.resize(start[n]);
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t)
-      for (int v : fm.tris[t]) tri_of[fill[v]++] = t;
+  explicit Balls(const FaceMesh& fm) { vertex_triangles(fm.num_nodes(), fm.tris, start, tri_of); }
+};
+
+// Node i's triangles with i moved to (uv, s): whether they all stay valid,
+// their worst shape, their smallest corner angle (degrees) and how many are
+// under 12 degrees (pole triangles only need to stay counter-clockwise).
+// `lenient`, per triangle of the ball: it already failed the shape's validity
+// (the surface's normal turns more than 60 degrees within it) and need only
+// stay counter-clockwise in uv and not turned against the surface at its
+// centroid, the report's inverted test.
+struct BallMeasure {
+  bool valid = true;
+  double shape = 2, angle = 180;
+  int thin = 0;
+  // Fewer thin triangles first, then a larger smallest angle.
+  bool better_than(const BallMeasure& o, double by) const {
+    return thin < o.thin || (thin == o.thin && angle > o.angle + by);
   }
 };
 
-// Worst of a measure over node i's triangles with i moved to (uv, s): shape
-// (measure_angle false), or the smallest corner angle in degrees less 1000
-// per triangle under 12 degrees (fewer thin triangles first, then the
-// largest smallest angle); -1 (shape) or -1e9 (angle) if one of them becomes
-// invalid. `lenient` (angle only), per triangle of the ball: it already
-// failed the shape's validity (the surface's normal turns more than 60
-// degrees within it) and need only stay counter-clockwise in uv and not
-// turned against the surface at its centroid, the report's inverted test.
-double ball_worst(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
-                  const SurfaceSample& s, bool measure_angle, const std::vector<char>* lenient = nullptr) {
-  const double invalid = measure_angle ? -1e9 : -1;
-  double worst = measure_angle ? 180 : 2, thin = 0;
-  for (int e = b.start[i]; e < b.start[i + 1]; ++e) {
+BallMeasure measure_ball(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
+                         const SurfaceSample& s, const std::vector<char>* lenient = nullptr) {
+  BallMeasure m;
+  for (int e = b.start[i]; e < b.start[i + 1] && m.valid; ++e) {
     const auto& tr = fm.tris[b.tri_of[e]];
     Vec2 u[3];
     const SurfaceSample* p[3];
@@ -145,28 +141,27 @@ double ball_worst(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int
       p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
     }
     if (fm.pole_triangle(tr)) {
-      if (!(orient(u[0], u[1], u[2]) > 0)) return invalid;
+      m.valid = orient(u[0], u[1], u[2]) > 0;
       continue;
     }
-    double q = 0;
     if (lenient && (*lenient)[e - b.start[i]]) {
       const Vec3 nt = (p[1]->p - p[0]->p).cross(p[2]->p - p[0]->p);
-      if (!(orient(u[0], u[1], u[2]) > 0) || fs.turned_at_centroid(u[0], u[1], u[2], nt)) return invalid;
+      m.valid = orient(u[0], u[1], u[2]) > 0 && !fs.turned_at_centroid(u[0], u[1], u[2], nt);
     } else {
-      q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
-      if (q < 0) return invalid;
-    }
-    if (!measure_angle) {
-      worst = std::min(worst, q);
-      continue;
+      const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
+      m.valid = q >= 0;
+      m.shape = std::min(m.shape, q);
     }
     const double angle = min_angle_deg(p[0]->p, p[1]->p, p[2]->p);
-    worst = std::min(worst, angle);
-    thin += angle < 12;
+    m.angle = std::min(m.angle, angle);
+    m.thin += angle < 12;
   }
-  return worst - 1000 * thin;
+  return m;
 }
 
+// One sweep of smoothing: each inner node moves towards the mean of its
+// neighbours in space (one Gauss-Newton step in uv), kept only if the worst
+// shape around it does not get worse.
 int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
   const int n = fm.num_nodes();
   const Balls balls(fm);
@@ -204,8 +199,8 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
         continue;  // outside what the surface can evaluate: stay
       }
       s.h = si.h;
-      const double new_q = ball_worst(fm, fs, balls, i, uv, s, false);
-      if (new_q < 0 || new_q < old_q) continue;
+      const BallMeasure moved_to = measure_ball(fm, fs, balls, i, uv, s);
+      if (!moved_to.valid || moved_to.shape < old_q) continue;
       fm.uv[i] = uv;
       fm.s[i] = s;
       ++moved;
@@ -236,9 +231,9 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
       const auto& t = fm.tris[balls.tri_of[e]];
       lenient.push_back(!fm.pole_triangle(t) && shape(fm, fs, t) < 0);
     }
-    double best = ball_worst(fm, fs, balls, i, uv, s, true, &lenient);
-    if (!(best > -1e8 && best < kRescueBelow)) continue;
-    const double start_value = best;
+    BallMeasure best = measure_ball(fm, fs, balls, i, uv, s, &lenient);
+    if (!best.valid || !(best.angle < kRescueBelow)) continue;
+    const BallMeasure start_value = best;
     double step = 0;  // a third of the mean edge in uv
     for (int e = balls.start[i]; e < balls.start[i + 1]; ++e)
       for (int v : fm.tris[balls.tri_of[e]]) step += (fm.uv[v] - uv).norm();
@@ -257,8 +252,8 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
           continue;
         }
         ts.h = fm.s[i].h;
-        const double v = ball_worst(fm, fs, balls, i, trial, ts, true, &lenient);
-        if (v > best + 1e-9) {
+        const BallMeasure v = measure_ball(fm, fs, balls, i, trial, ts, &lenient);
+        if (v.valid && v.better_than(best, 1e-9)) {
           best = v;
           best_uv = trial;
           best_s = ts;
@@ -274,8 +269,7 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
     }
     // Kept when it leaves fewer thin triangles, or none and a larger smallest
     // angle: a thin triangle traded for another one would only move it.
-    auto thin = [](double v) { return std::lround((90 - v) / 1000); };
-    if (thin(best) < thin(start_value) || (thin(start_value) == 0 && best > start_value + 1e-6)) {
+    if (best.thin < start_value.thin || (start_value.thin == 0 && best.better_than(start_value, 1e-6))) {
       fm.uv[i] = uv;
       fm.s[i] = s;
       ++moved;

@@ -58,9 +58,9 @@ class Leads {
   double room(Link l, double h) const {
     const CurveSamples& s = s_[l.curve];
     const double L = s.length();
+    if (L < kMinCurve * h) return 0.0;
     const double turn = l.end == 0 ? sample_at(s.S, sample_pos(s.T, kMaxLeadTurn))
                                    : L - sample_at(s.S, sample_pos(s.T, s.turning - kMaxLeadTurn));
-    if (L < kMinCurve * h) return 0.0;
     return std::min(kLeadShare * L, turn);
   }
 

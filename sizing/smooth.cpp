@@ -1,6 +1,7 @@
 #include "sizing/smooth.h"
 
 #include "geometry/stopwatch.h"
+#include "geometry/vertex_triangles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,15 +106,7 @@ struct Adjacency {
     w.resize(bg.edges.size());
     for (size_t e = 0; e < bg.edges.size(); ++e)
       w[e] = edge_log_beta[e] * (bg.xyz[bg.edges[e][0]] - bg.xyz[bg.edges[e][1]]).norm() * (1 - kSlack);
-    const int nv = bg.num_vertices();
-    tri_start.assign(nv + 1, 0);
-    for (const auto& t : bg.tris)
-      for (int v : t) ++tri_start[v + 1];
-    for (int v = 0; v < nv; ++v) tri_start[v + 1] += tri_start[v];
-    tri_ids.resize(tri_start[nv]);
-    std::vector<int> fill(tri_start.begin(), tri_start.end() - 1);
-    for (int t = 0; t < bg.num_triangles(); ++t)
-      for (int v : bg.tris[t]) tri_ids[fill[v]++] = t;
+    vertex_triangles(bg.num_vertices(), bg.tris, tri_start, tri_ids);
   }
 };
 
