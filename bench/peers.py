@@ -9,7 +9,7 @@ surface relative to the bounding-box diagonal. Prints a Markdown table and
 ratios against Gmsh. Never fails on numbers.
 
     /usr/bin/python3 bench/peers.py [--build build] [--models DIR] [--phi 10 5] [--timeout 300] [--only NAME...]
-    /usr/bin/python3 bench/peers.py --sweep [--only NAME...] [--out DIR]
+    /usr/bin/python3 bench/peers.py --sweep [--only NAME...] [--out DIR] [--tools sizemesh sizemesh-fidelity --peers OLD/sweep.csv]
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
@@ -147,8 +147,8 @@ def sweep(a):
     # gives one point per model.
     # sizemesh: deviation bounds with phi_c = 30; the coarse ones also with phi_c = 90
     # (at a coarse deviation, 30 degrees per element across small fillets sets the floor).
-    levels = {"sizemesh": [(3.2e-3, 90), (1.6e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5,
-                           2.5e-5],
+    levels = {"sizemesh": [(1.28e-2, 90), (6.4e-3, 90), (3.2e-3, 90), (1.6e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3,
+                           8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
@@ -156,6 +156,11 @@ def sweep(a):
     print("| model | tool | level | wall s | triangles | <12 deg | <24 deg | max dist/diag |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     curves, rows = {}, []
+    for row in load_peer_rows(a.peers, a.tools):  # earlier peer runs (--peers): the peers do not change
+        if a.only and not any(o in row[0] for o in a.only):
+            continue
+        curves.setdefault((row[0], row[1]), []).append((row[4], row[3]))
+        rows.append(row)
     for name in MODELS:
         if a.only and not any(o in name for o in a.only):
             continue
@@ -218,6 +223,20 @@ def print_peer_levels(curves):
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, peer, d, n, ratio[0], ratio[1]))
 
 
+def load_peer_rows(paths, tools):
+    """Rows of earlier sweep.csv files for the peers not run now (Gmsh and Netgen take minutes
+    per model and do not change between sizemesh versions)."""
+    rows = []
+    for path in paths or []:
+        with open(path) as f:
+            next(f)
+            for line in f:
+                c = line.strip().split(",")
+                if len(c) == 8 and not c[1].startswith("sizemesh") and c[1] not in tools:
+                    rows.append((c[0], c[1], c[2], int(c[3]), float(c[4]), float(c[5]), float(c[6]), float(c[7])))
+    return rows
+
+
 def write_sweep_csv(path, rows):
     """One line per mesh: the curve points behind the plot."""
     with open(path, "w") as f:
@@ -264,6 +283,8 @@ def main():
     ap.add_argument("--tools", nargs="*", default=["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"])
     ap.add_argument("--sweep", action="store_true")
     ap.add_argument("--out", help="--sweep: directory for sweep.csv and sweep.png (default: the scratch directory)")
+    ap.add_argument("--peers", nargs="*", help="--sweep: earlier sweep.csv files whose Gmsh and Netgen rows are "
+                    "used for the peers left out of --tools")
     a = ap.parse_args()
     if a.sweep:
         return sweep(a)

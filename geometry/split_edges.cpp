@@ -89,13 +89,22 @@ int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& e
         const int la = tr[k], lb = tr[(k + 1) % 3], lo = tr[(k + 2) % 3];
         const int e = edge_id(patch.vertex[la], patch.vertex[lb]);
         if (e < 0 || !marked[e] || !bg.edge_curve[e]) continue;
-        // The new uv must stay well inside the triangle's side of the chord.
-        const Vec2 chord = patch.uv[lb] - patch.uv[la];
-        const Vec2 m = pcurve_uv(g, bg.edge_curve[e], patch.face, mid_t[e], 0.5 * (patch.uv[la] + patch.uv[lb]));
-        const double height = cross(chord, patch.uv[lo] - patch.uv[la]);  // > 0, counter-clockwise
-        if (!std::isfinite(m.x()) || !(cross(chord, m - patch.uv[la]) < 0.25 * height) ||
-            !(cross(chord, m - patch.uv[la]) > -0.25 * height))
-          marked[e] = 0;
+        // The new uv must keep the triangles it makes counter-clockwise. Split
+        // alone in its triangle (the others sides left whole), that is exact:
+        // both halves (a, m, o) and (m, b, o) keep a tenth of the triangle's
+        // area, which lets a flat triangle along a curve (a corner close to
+        // the curve edge) be split where the curve's midpoint in uv is off
+        // the chord by more than the triangle is high. With other sides split
+        // too, the new uv must stay within a quarter of the height of the chord.
+        const Vec2 &a = patch.uv[la], &b = patch.uv[lb], &o = patch.uv[lo];
+        const Vec2 chord = b - a;
+        const Vec2 m = pcurve_uv(g, bg.edge_curve[e], patch.face, mid_t[e], 0.5 * (a + b));
+        const double height = cross(chord, o - a);  // > 0, counter-clockwise
+        const int e1 = edge_id(patch.vertex[lb], patch.vertex[lo]), e2 = edge_id(patch.vertex[lo], patch.vertex[la]);
+        const bool alone = (e1 < 0 || !marked[e1]) && (e2 < 0 || !marked[e2]);
+        const bool keeps = alone ? cross(m - a, o - a) > 0.1 * height && cross(b - m, o - m) > 0.1 * height
+                                 : std::abs(cross(chord, m - a)) < 0.25 * height;
+        if (!std::isfinite(m.x()) || !keeps) marked[e] = 0;
       }
     }
 

@@ -72,6 +72,14 @@ class Leads {
     return g_.eval_curve(l.curve, sample_at(s.t, sample_pos(s.S, l.end == 0 ? r : s.length() - r)));
   }
 
+  // Element size at arc length r from a curve end: ds / dF of Eq. 1a there.
+  double size_at(Link l, double r) const {
+    const CurveSamples& s = s_[l.curve];
+    const SamplePos p = sample_pos(s.S, l.end == 0 ? r : s.length() - r);
+    const double dF = s.F[p.k] - s.F[p.k - 1];
+    return dF > 0 ? (s.S[p.k] - s.S[p.k - 1]) / dF : 0.0;
+  }
+
   // Width of a corner's wedge at arc length r along both curves.
   double width(const Corner& c, double r) const { return (at(c.side[0], r) - at(c.side[1], r)).norm(); }
 
@@ -160,7 +168,17 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
     } catch (const EvaluationError&) {  // the kernel cannot evaluate a curve there: equal steps
       continue;
     }
-    const double r = c.alpha > 0 ? std::min(most, kWedgeWidth * c.h / std::tan(c.alpha)) : most;
+    // The segments after the first are as long as the size where it ends,
+    // which grows away from a small corner size: r is found where the wedge
+    // is kWedgeWidth times that size wide (a few fixed-point steps).
+    double r = most;
+    if (c.alpha > 0) {
+      r = std::min(most, kWedgeWidth * c.h / std::tan(c.alpha));
+      for (int it = 0; it < 4; ++it) {
+        const double h = std::max({c.h, leads.size_at(c.side[0], r), leads.size_at(c.side[1], r)});
+        r = std::min(most, kWedgeWidth * h / std::tan(c.alpha));
+      }
+    }
     if (!(r > c.h)) continue;
     leads.apply(c.side[0], r);
     leads.apply(c.side[1], r);

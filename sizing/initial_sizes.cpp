@@ -60,7 +60,7 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   std::vector<double> h_face(bg.num_vertices(), kNoLimit), h_curve(bg.num_vertices(), kNoLimit);
   if (p.proximity) {
     h_face = face_proximity_sizes(g, bg, p);
-    h_curve = curve_length_sizes(g, bg);
+    h_curve = curve_length_sizes(g, bg, p);
   }
   m.t_proximity = clock.lap();
   GapSizes h_gap(bg.num_vertices());

@@ -12,6 +12,10 @@
 namespace sizemesh {
 
 namespace {
+// Face widths and curve lengths under this are below the deviation bound's
+// accuracy (0 without a bound: every feature counts).
+double below_accuracy(const SizingParams& p) { return 2 * p.deviation; }
+
 double face_mu(const SizingParams& p, int face) {
   auto it = p.face_mu_d.find(face);
   return it == p.face_mu_d.end() ? p.mu_d : it->second;
@@ -99,6 +103,10 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
 // Here d_s is that width measured locally, across the face from each boundary
 // vertex (equal to 2 A / l on a strip); the smallest over a vertex's faces.
 // Inner vertices get no face-proximity bound: gradation carries it inwards.
+// With a deviation bound delta, a face narrower than 2 delta is a feature below
+// the accuracy asked for (the whole strip lies within delta of one curve):
+// its width sets no size, and it is spanned by elements as long as its
+// neighbours' (thin triangles the report counts as forced by a narrow face).
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
@@ -107,23 +115,25 @@ std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh
   });
   std::vector<double> h(bg.num_vertices(), kNoLimit);
   for (size_t i = 0; i < widths.size(); ++i)
-    for (const auto& [v, w] : widths[i]) h[v] = std::min(h[v], w / face_mu(p, static_cast<int>(i) + 1));
+    for (const auto& [v, w] : widths[i])
+      if (!(w < below_accuracy(p))) h[v] = std::min(h[v], w / face_mu(p, static_cast<int>(i) + 1));
   return h;
 }
 
-// h_d0: the length of the shortest curve through the vertex.
-std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& bg) {
+// h_d0: the length of the shortest curve through the vertex; with a deviation
+// bound delta, curves shorter than 2 delta set none (as narrow faces above).
+std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   std::vector<double> h(bg.num_vertices(), kNoLimit);
   for (int c = 1; c <= g.num_curves(); ++c) {
     const double len = g.curve_length(c);
-    if (g.curve_degenerated(c) || !(len > 0)) continue;
+    if (g.curve_degenerated(c) || !(len > 0) || len < below_accuracy(p)) continue;
     for (int pt : {g.curve_start_point(c), g.curve_end_point(c)})
       if (pt > 0) h[pt - 1] = std::min(h[pt - 1], len);
   }
   for (int v = 0; v < bg.num_vertices(); ++v)
     if (bg.dim[v] == 1) {
       const double len = g.curve_length(bg.entity[v]);
-      if (len > 0) h[v] = std::min(h[v], len);
+      if (len > 0 && !(len < below_accuracy(p))) h[v] = std::min(h[v], len);
     }
   return h;
 }

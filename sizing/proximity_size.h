@@ -4,6 +4,8 @@
 //        from each boundary vertex (the paper's 2 A / l is that width for a
 //        strip-shaped face; measured locally it also holds for other shapes)
 // curve: h_d0 = length of the shortest curve through the vertex
+// (with a deviation bound delta, faces narrower and curves shorter than
+// 2 delta are below the accuracy asked for and set no size)
 // gap:   g / mu_d, g the distance along the normal (of each face the vertex
 //        lies on) to the nearest opposite-facing surface of another face; on
 //        the fluid's side (Geometry::fluid_side) the ray crosses the fluid
@@ -26,7 +28,7 @@
 namespace sizemesh {
 
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p);
-std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& bg);
+std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p);
 struct GapSizes {
   explicit GapSizes(int nv) : fluid(nv, kNoLimit), solid(nv, kNoLimit) {}
   std::vector<double> fluid, solid;  // #V each, kNoLimit where none

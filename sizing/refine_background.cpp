@@ -27,6 +27,16 @@ double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, cons
   return h;
 }
 
+// The longest side of background triangle t (an edge id).
+int longest_edge(const BackgroundMesh& bg, int t) {
+  const auto& tr = bg.tris[t];
+  auto length = [&](int k) { return (bg.xyz[tr[k]] - bg.xyz[tr[(k + 1) % 3]]).norm(); };
+  int longest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (length(k) > length(longest)) longest = k;
+  return bg.tri_edges[t][longest];
+}
+
 }  // namespace
 
 void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
@@ -75,13 +85,20 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
           if (missed) break;
         }
         if (!missed) continue;
-        const auto& tr = bg.tris[gt];
-        int longest = 0;
-        for (int k = 1; k < 3; ++k)
-          if ((bg.xyz[tr[k]] - bg.xyz[tr[(k + 1) % 3]]).norm() > (bg.xyz[tr[longest]] - bg.xyz[tr[(longest + 1) % 3]]).norm())
-            longest = k;
-        split.push_back(bg.tri_edges[gt][longest]);
+        split.push_back(longest_edge(bg, gt));
       }
+    // A triangle too flat to carry the edge-graded sizes: with one corner
+    // close to the opposite (long) edge, the linear interpolant's gradient
+    // (Eq. 11) is the size difference over that short height, and the
+    // triangle stage would lower the far corners to the near one's size,
+    // and from them the whole face. Its longest edge is split, so that the
+    // sizes can grade along it.
+    for (int t = 0; t < bg.num_triangles(); ++t) {
+      const auto& tr = bg.tris[t];
+      const double lo = std::min({h[tr[0]], h[tr[1]], h[tr[2]]}), hi = std::max({h[tr[0]], h[tr[1]], h[tr[2]]});
+      if (hi > kRefineGain * lo && triangle_gradient(bg, h, t) > kRefineGain * m.tri_log_beta[t])
+        split.push_back(longest_edge(bg, t));
+    }
     const int n = split.empty() ? 0 : split_edges(bg, g, split);
     if (n == 0) break;
     s.rounds = round + 1;

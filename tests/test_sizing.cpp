@@ -11,6 +11,7 @@
 #include <TopoDS_Compound.hxx>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -156,6 +157,29 @@ TEST_CASE("a box with one tiny edge grades away from it at exactly the bound") {
   CHECK(c.max_edge_ratio <= 1 + 1e-9);
   CHECK(c.max_edge_ratio >= 1 - 1e-6);  // the bound is reached, not just respected
   CHECK(c.max_triangle_ratio <= 1 + 1e-9);
+}
+
+TEST_CASE("with a deviation bound, faces narrower and curves shorter than twice it set no proximity size") {
+  // A 100 x 100 x 1 slab: four side faces 1 mm wide, four curves 1 mm long.
+  // Without a bound the side faces give 1 / mu_d at their rims and the short
+  // curves 1; a bound of 0.6 (2 x 0.6 > 1) asks for less accuracy than the
+  // 1 mm features, so they set no size; a bound of 0.4 keeps them.
+  Model m = model_from_shape(BRepPrimAPI_MakeBox(100.0, 100.0, 1.0).Shape());
+  BackgroundMesh bg = build_background_mesh(m);
+  SizingParams p;
+  auto smallest = [&](const std::vector<double>& h) { return *std::min_element(h.begin(), h.end()); };
+  for (double delta : {0.0, 0.4, 0.6}) {
+    p.deviation = delta;
+    const std::vector<double> face = face_proximity_sizes(m, bg, p), curve = curve_length_sizes(m, bg, p);
+    INFO("deviation " << delta);
+    if (delta < 0.5) {
+      CHECK(smallest(face) == Approx(1.0 / p.mu_d));
+      CHECK(smallest(curve) == Approx(1.0));
+    } else {
+      CHECK(smallest(face) == Approx(100.0 / p.mu_d));  // the big faces' own width still counts
+      CHECK(smallest(curve) == Approx(100.0));
+    }
+  }
 }
 
 TEST_CASE("a thin closed slab is not refined across its thickness by default, fully with the solid side") {
