@@ -22,6 +22,13 @@ constexpr double kSlack = 1e-12;
 // on without end; with this margin each new correction lowers a size by a
 // finite step, so the rounds end.
 constexpr double kTriangleMargin = 1e-3;
+// Rounds in which a triangle may be corrected by the least change (which
+// lowers its middle corner too, the smallest corner of other triangles, so
+// that rounds could creep on); after them, by the paper's rules, which end.
+constexpr int kLeastChangeRounds = 20;
+// Least share of its middle size the least change may keep (below it, the
+// paper's rules): a larger cut spreads to the triangles around that corner.
+constexpr double kLeastChangeKeep = 0.9;
 
 // Gradient of the linear interpolant on a triangle in its own plane (Eq. 11),
 // written with size differences from the corner `o0` so that equal sizes give
@@ -47,18 +54,71 @@ double gradient2(const TriangleFrame& f, double a, double b) {
   return std::max(0.0, (a * a * f.g22 - 2 * a * b * f.g12 + b * b * f.g11) / f.det);
 }
 
+// The least change that meets Eq. 11 with h0 kept: among the (a, b) =
+// (h1' - h0, h2' - h0) in the ellipse |grad h|^2 det = x^T M x <= L^2 det,
+// M = [[G22, -G12], [-G12, G11]], and in the box 0 <= a <= h1 - h0,
+// 0 <= b <= h2 - h0, the one that keeps the most of both sizes,
+// max a / h1 + b / h2: x = L u / sqrt(c . u) with c = (1 / h1, 1 / h2) and
+// u = det M^-1 c = (G11 c1 + G12 c2, G12 c1 + G22 c2); where that leaves the
+// box, the bound side's size is kept (or zero) and the other is the
+// ellipse's root there. Beyond the paper, whose rules lower the largest
+// size first: on a needle whose short side is at its bound, that pulls the
+// far corner down to the near side's size, where lowering the near side by
+// a few percent lets the far corner keep its own. False (nothing changed)
+// where the ellipse has no such point or h1 would lose more than
+// 1 - kLeastChangeKeep of itself.
+bool least_change(const TriangleFrame& f, double L, double h0, double& h1, double& h2) {
+  const double A = h1 - h0, B = h2 - h0;
+  if (!(h1 > 0) || !(h2 > 0)) return false;
+  const double c1 = 1 / h1, c2 = 1 / h2;
+  const double u1 = f.g11 * c1 + f.g12 * c2, u2 = f.g12 * c1 + f.g22 * c2;
+  const double cu = c1 * u1 + c2 * u2;
+  if (!(cu > 0)) return false;
+  double x1 = L * u1 / std::sqrt(cu), x2 = L * u2 / std::sqrt(cu);
+  // Largest b on the ellipse for a given a, and the other way round (NaN where none).
+  auto b_at = [&](double a) { return (a * f.g12 + std::sqrt(f.det * (f.g11 * L * L - a * a))) / f.g11; };
+  auto a_at = [&](double b) { return (b * f.g12 + std::sqrt(f.det * (f.g22 * L * L - b * b))) / f.g22; };
+  if (x1 > A) x1 = A, x2 = std::min(B, b_at(A));
+  else if (x2 > B) x2 = B, x1 = std::min(A, a_at(B));
+  else if (x1 < 0) x1 = 0, x2 = std::min(B, L * std::sqrt(f.det / f.g11));
+  else if (x2 < 0) x2 = 0, x1 = std::min(A, L * std::sqrt(f.det / f.g22));
+  if (!(x1 >= 0) || !(x2 >= 0) || !(x1 <= A) || !(x2 <= B)) return false;
+  if (gradient2(f, x1, x2) > L * L * (1 + 1e-9)) return false;
+  if (h0 + x1 < kLeastChangeKeep * h1) return false;
+  // Only lowered (h0 + (h1 - h0) need not give h1 back to the last bit).
+  const double n1 = std::min(h1, h0 + x1), n2 = std::min(h2, h0 + x2);
+  if (!(n1 < h1) && !(n2 < h2)) return false;
+  h1 = n1;
+  h2 = n2;
+  return true;
+}
+
 // Paper 3.3 correction of one violating triangle, corners sorted h0 <= h1 <= h2,
 // L = ln(beta), a = h1 - h0, b = h2 - h0:
 // (1) lower h2 so that |grad h| = L: the quadratic in b has the root
 //     b = (a G12 + sqrt(det (G11 L^2 - a^2))) / G11, real whenever edge 0-1
-//     meets its bound (the edge stage guarantees it);
+//     meets its bound (the edge stage guarantees it); in the first
+//     kLeastChangeRounds rounds the least change above comes first;
 // (2) beyond the paper: in an obtuse triangle the middle size can be the
 //     culprit (h2 is already below that root); then lower h1 the same way;
 // (3) the paper's second rule: lower h1 and h2 together to h0 + L * height_0;
 // (4) last resort: h1 = h2 = h0 (gradient zero).
 // Sizes are only lowered; returns true when one changed.
-bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vector<double>& h) {
+bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vector<double>& h, bool least) {
   const auto& tr = bg.tris[t];
+  // (0) A corner lowered earlier in this round (by a neighbouring triangle)
+  // leaves this triangle's sides over their Eq. 12 bound until the edge
+  // stage runs again, and rules (1)-(3) assume they meet it: on a needle,
+  // rule (3) would then pull the far corner down to the near side's size.
+  // The sides are graded first, along themselves, as the edge stage would.
+  bool graded = false;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) {
+        if (j == k) continue;
+        const double bound = h[tr[k]] + log_beta * (bg.xyz[tr[k]] - bg.xyz[tr[j]]).norm();
+        if (bound < h[tr[j]]) h[tr[j]] = bound, graded = true;
+      }
   int o[3] = {0, 1, 2};
   std::sort(o, o + 3, [&](int a, int b) { return h[tr[a]] < h[tr[b]]; });
   const TriangleFrame f = frame(bg, t, o);
@@ -72,6 +132,7 @@ bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vec
     hv = value;
     return true;
   };
+  if (graded && gradient2(f, h1 - h0, h2 - h0) <= log_beta * log_beta) return true;
   const double a = h1 - h0, b = h2 - h0;
   // An edge at its own bound (between L and ln(beta)) gives the root of zero
   // discriminant: the gradient is then that edge's slope, within the bound.
@@ -80,6 +141,7 @@ bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vec
     return q < 0 && d * d <= g * log_beta * log_beta * (1 + 1e-9) ? 0.0 : q;
   };
   const double disc_a = disc(f.g11, a);
+  if (least && least_change(f, L, h0, h1, h2)) return true;
   if (disc_a >= 0 && lowered(h2, h0 + (a * f.g12 + std::sqrt(disc_a)) / f.g11)) return true;
   const double disc_b = disc(f.g22, b);
   if (disc_b >= 0 && lowered(h1, h0 + (b * f.g12 + std::sqrt(disc_b)) / f.g22)) return true;
@@ -90,7 +152,7 @@ bool correct_triangle(const BackgroundMesh& bg, int t, double log_beta, std::vec
     if (gradient2(f, h1 - h0, h2 - h0) <= log_beta * log_beta) return true;
   }
   const bool d1 = lowered(h1, h0), d2 = lowered(h2, h0);
-  return c1 || c2 || d1 || d2;
+  return graded || c1 || c2 || d1 || d2;
 }
 
 }  // namespace
@@ -183,7 +245,7 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
       const auto& tr = bg.tris[t];
       const double before[3] = {m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]};
       // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
-      if (round < 1000) correct_triangle(bg, t, lb, m.h);
+      if (round < 1000) correct_triangle(bg, t, lb, m.h, round < kLeastChangeRounds);
       else m.h[tr[0]] = m.h[tr[1]] = m.h[tr[2]] = std::min({before[0], before[1], before[2]});
       for (int k = 0; k < 3; ++k)
         if (m.h[tr[k]] < before[k]) changed.push_back(tr[k]);
