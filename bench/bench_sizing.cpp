@@ -2,8 +2,10 @@
 // initialise, refine the background and smooth on every shared model, one
 // thread (the refinement's share is shown apart: "init s" covers the sizes of
 // the tessellation alone, "refine s" the rounds of splitting and re-sizing); the exact edge
-// solver against lp_solve in the same run; smoothing on a background mesh of
-// the paper's F-16 size (about 47k triangles). Prints only.
+// solver against lp_solve in the same run; the triangles the smoothed map asks
+// for, and that count over the edge stage's alone (what the triangle stage,
+// Eq. 11, costs); smoothing on a background mesh of the paper's F-16 size
+// (about 47k triangles). Prints only.
 //
 //   ./build/bench/bench_sizing [models_dir]
 #include <tbb/global_control.h>
@@ -18,6 +20,7 @@
 #include "sizing/lp_smooth.h"
 #include "sizing/refine_background.h"
 #include "sizing/smooth.h"
+#include "sizing/triangle_estimate.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -31,8 +34,9 @@ int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : SIZEMESH_MODELS_DIR;
   std::vector<std::string> files;  // the test models (tests/test_models.h): one list for tests and benches
   for (const auto& m : sizemesh::test::shared_models()) files.push_back(m.file);
-  std::printf("%-32s %8s %8s %8s %8s %8s %8s %8s %8s %9s %9s %8s\n", "model", "load s", "tess s", "init s",
-              "refine s", "smooth s", "total s", "tess tri", "bg tris", "edge ms", "lp ms", "lp/exact");
+  std::printf("%-32s %8s %8s %8s %8s %8s %8s %8s %8s %9s %9s %8s %9s %8s\n", "model", "load s", "tess s", "init s",
+              "refine s", "smooth s", "total s", "tess tri", "bg tris", "edge ms", "lp ms", "lp/exact",
+              "triangles", "/edge");
   for (const std::string& f : files) {
     double t = now();
     Model model = load_model(dir + "/" + f);
@@ -54,13 +58,16 @@ int main(int argc, char** argv) {
     t = now();
     smooth_edges(bg, m.edge_log_beta, h);
     const double t_edge = now() - t;
+    // What the triangle stage (Eq. 11) costs over the edge stage alone, in triangles asked for.
+    const double n_edge = estimate_triangles(bg, h, {}, model.num_faces()).total;
+    const double n_final = estimate_triangles(bg, m.h, {}, model.num_faces()).total;
     h = m.h_initial;
     t = now();
     smooth_edges_lp(bg, m.edge_log_beta, h);
     const double t_lp = now() - t;
-    std::printf("%-32s %8.3f %8.3f %8.3f %8.3f %8.4f %8.3f %8d %8d %9.2f %9.1f %8.0f\n", f.c_str(), t_load, t_tess, t_init,
+    std::printf("%-32s %8.3f %8.3f %8.3f %8.3f %8.4f %8.3f %8d %8d %9.2f %9.1f %8.0f %9.0f %8.2f\n", f.c_str(), t_load, t_tess, t_init,
                 t_refine, t_smooth, t_load + t_tess + t_refine + t_smooth, tess_tris, bg.num_triangles(), 1e3 * t_edge,
-                1e3 * t_lp, t_lp / t_edge);
+                1e3 * t_lp, t_lp / t_edge, n_final, n_final / n_edge);
   }
   // The paper's F-16 background mesh had 47,127 triangles; refine ours to that size.
   Model f16 = load_model(dir + "/f16_openvsp.stp");

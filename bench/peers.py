@@ -219,7 +219,10 @@ def print_peer_levels(curves):
             ratio = []
             for tool in ("sizemesh", "sizemesh-fidelity"):
                 r = matched(curves.get((name, tool), []), d)
-                ratio.append("-" if r is None else "%s%.2f" % ("" if r[0] == "=" else r[0], r[1] / n))
+                # matched() bounds sizemesh's count here: "<" (its finest run is still less
+                # accurate) means it needs more than r[1], a ratio of at least r[1] / n, and so on.
+                flip = {"=": "", "<": ">", ">": "<"}
+                ratio.append("-" if r is None else "%s%.2f" % (flip[r[0]], r[1] / n))
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, peer, d, n, ratio[0], ratio[1]))
 
 
