@@ -212,6 +212,7 @@ def print_peer_levels(curves):
     print("\nAt each peer mesh's maximum distance, triangles sizemesh needs (interpolated on its curve) / the peer's:\n")
     print("| model | peer run | max dist/diag | peer triangles | sizemesh / peer | sizemesh-fidelity / peer |")
     print("|---|---|---:|---:|---:|---:|")
+    tally = {}  # (model, tool) -> [levels at most 1, levels over 1, levels not decided]
     for (name, peer), pts in curves.items():
         if peer.startswith("sizemesh"):
             continue
@@ -223,19 +224,29 @@ def print_peer_levels(curves):
                 # accurate) means it needs more than r[1], a ratio of at least r[1] / n, and so on.
                 flip = {"=": "", "<": ">", ">": "<"}
                 ratio.append("-" if r is None else "%s%.2f" % (flip[r[0]], r[1] / n))
+                if r is not None:
+                    x, sign = r[1] / n, flip[r[0]]
+                    t = tally.setdefault((name, tool), [0, 0, 0])
+                    t[0 if x <= 1 and sign != ">" else 1 if x > 1 and sign != "<" else 2] += 1
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, peer, d, n, ratio[0], ratio[1]))
+    print("\nPeer levels where sizemesh needs no more triangles than the peer (ratio <= 1), per model:\n")
+    print("| model | sizemesh run | at most 1 | over 1 | undecided (a bound across 1) |")
+    print("|---|---|---:|---:|---:|")
+    for (name, tool), (le, gt, unknown) in sorted(tally.items()):
+        print("| %s | %s | %d | %d | %d |" % (name, tool, le, gt, unknown))
 
 
 def load_peer_rows(paths, tools):
-    """Rows of earlier sweep.csv files for the peers not run now (Gmsh and Netgen take minutes
-    per model and do not change between sizemesh versions)."""
+    """Rows of earlier sweep.csv files for the tools not run now: Gmsh and Netgen take minutes
+    per model and do not change between sizemesh versions; with no --tools at all, the tables
+    are printed again from the files alone."""
     rows = []
     for path in paths or []:
         with open(path) as f:
             next(f)
             for line in f:
                 c = line.strip().split(",")
-                if len(c) == 8 and not c[1].startswith("sizemesh") and c[1] not in tools:
+                if len(c) == 8 and c[1] not in tools:
                     rows.append((c[0], c[1], c[2], int(c[3]), float(c[4]), float(c[5]), float(c[6]), float(c[7])))
     return rows
 
@@ -286,8 +297,8 @@ def main():
     ap.add_argument("--tools", nargs="*", default=["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"])
     ap.add_argument("--sweep", action="store_true")
     ap.add_argument("--out", help="--sweep: directory for sweep.csv and sweep.png (default: the scratch directory)")
-    ap.add_argument("--peers", nargs="*", help="--sweep: earlier sweep.csv files whose Gmsh and Netgen rows are "
-                    "used for the peers left out of --tools")
+    ap.add_argument("--peers", nargs="*", help="--sweep: earlier sweep.csv files whose rows are used for the "
+                    "tools left out of --tools")
     a = ap.parse_args()
     if a.sweep:
         return sweep(a)
