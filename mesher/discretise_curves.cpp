@@ -89,7 +89,7 @@ std::vector<double> place_nodes(const CurveSamples& s, int n, const std::array<d
 
 }  // namespace
 
-CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
+CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h, double deviation) {
   const int nc = g.num_curves(), np = g.num_points(), nf = g.num_faces();
   CurveMesh out;
   out.point_node.assign(np + 1, -1);
@@ -141,7 +141,7 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h) {
 
   // Sharp corners (mesher/sharp_corners.h): long first segments; the rest of
   // such a curve is counted again (Eq. 1a) between them.
-  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled);
+  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled, deviation);
   for (int c = 1; c <= nc; ++c) {
     const auto& lead = leads[c];
     const CurveSamples& s = sampled[c];

@@ -40,6 +40,7 @@ struct CurveMesh {
 // and the curves of a sharp corner start with one long segment
 // (mesher/sharp_corners.h).
 // Degenerate curves (poles) get none.
-CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h);
+// deviation: the size map's chord-height bound (0: none), passed to corner_leads.
+CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h, double deviation = 0);
 
 }  // namespace sizemesh

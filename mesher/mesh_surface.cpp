@@ -113,7 +113,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
   Stopwatch clock;
   CurveMesh cm;
   try {
-    cm = discretise_curves(g, h);
+    cm = discretise_curves(g, h, o.deviation);
   } catch (const Error&) {  // nothing can be meshed without the curves
     for (int f = 1; f <= g.num_faces(); ++f)
       out.failures.push_back({f, "the curves could not be discretised (geometry kernel error)"});

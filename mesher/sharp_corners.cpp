@@ -6,6 +6,8 @@
 #include <map>
 #include <vector>
 
+#include "sizing/curvature_size.h"
+
 namespace sizemesh {
 namespace {
 
@@ -28,6 +30,7 @@ struct Corner {
   Link side[2];
   double alpha;  // angle between the sides' tangents at the point
   double h;      // size there
+  double most = std::numeric_limits<double>::infinity();  // longest first segment the deviation bound allows
 };
 
 class Leads {
@@ -51,6 +54,22 @@ class Leads {
                      : Vec3(g_.eval_curve(l.curve, s.t[m - 1]) - g_.eval_curve(l.curve, s.t[m]));
     }
     return d.norm() > 0 && std::isfinite(d.norm()) ? Vec3(d.normalized()) : Vec3::Zero();
+  }
+
+  // The chord of height `deviation` on `face` at the point where l ends
+  // (sizing/curvature_size.h): on a curved face a first segment longer than
+  // this leaves the corner's triangle farther off the surface than asked.
+  // No bound where the face is flat or its curvature cannot be evaluated.
+  double deviation_cap(Link l, int face, double deviation) const {
+    const CurveSamples& s = s_[l.curve];
+    double k = 0;
+    try {
+      const Vec2 uv = g_.eval_pcurve(l.curve, face, 0, l.end == 0 ? s.t.front() : s.t.back());
+      if (!g_.max_curvature(face, uv, k)) return std::numeric_limits<double>::infinity();
+    } catch (const Error&) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return deviation_size(k, deviation);
   }
 
   // Longest first segment: kLeadShare of the curve, turning at most
@@ -112,8 +131,14 @@ class Leads {
 }  // namespace
 
 std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::vector<std::vector<FaceLoop>>& loops,
-                                                const std::vector<CurveSamples>& samples) {
+                                                const std::vector<CurveSamples>& samples, double deviation) {
   Leads leads(g, samples);
+  // Faces on each curve: a first segment bounds all of them.
+  std::vector<std::vector<int>> curve_faces(samples.size());
+  for (size_t f = 1; f < loops.size(); ++f)
+    for (const FaceLoop& loop : loops[f])
+      for (const CurveUse& u : loop)
+        if (u.curve > 0 && u.curve < static_cast<int>(curve_faces.size())) curve_faces[u.curve].push_back(static_cast<int>(f));
   std::vector<Corner> corners;
   for (size_t f = 1; f < loops.size(); ++f)
     for (const FaceLoop& loop : loops[f]) {
@@ -140,6 +165,9 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
         if (c.alpha >= kPropagate) continue;
         const CurveSamples &s0 = samples[c.side[0].curve], &s1 = samples[c.side[1].curve];
         c.h = std::min(c.side[0].end == 0 ? s0.h0 : s0.h1, c.side[1].end == 0 ? s1.h0 : s1.h1);
+        if (deviation > 0)
+          for (const Link& l : c.side)
+            for (int face : curve_faces[l.curve]) c.most = std::min(c.most, leads.deviation_cap(l, face, deviation));
         if (std::isfinite(c.h) && c.h > 0) corners.push_back(c);
       }
     }
@@ -162,7 +190,7 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
   // point tangent to each other count): the first node where a wedge opening
   // at alpha is kWedgeWidth h wide, at most kMaxLead elements out.
   for (const Corner& c : corners) {
-    const double most = std::min({kMaxLead * c.h, leads.room(c.side[0], c.h), leads.room(c.side[1], c.h)});
+    const double most = std::min({kMaxLead * c.h, c.most, leads.room(c.side[0], c.h), leads.room(c.side[1], c.h)});
     try {
       if (!(most > c.h) || leads.width(c, c.h) >= kWedgeWidth * c.h) continue;
     } catch (const EvaluationError&) {  // the kernel cannot evaluate a curve there: equal steps

@@ -60,6 +60,9 @@ struct MeshOptions {
   // Triangles the size map asks for per face (index face id; sizing/triangle_estimate.h):
   // the face mesher's work budget. Empty: budgets from the boundary alone.
   std::vector<double> expected_triangles;
+  // The chord-height bound the size map was built with (SizingParams::deviation;
+  // 0: none): a sharp corner's long first segment on a curved face stays within it.
+  double deviation = 0;
   // Called after each face with (faces done, faces in all), from any thread.
   std::function<void(int, int)> on_face_done;
 };

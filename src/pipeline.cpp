@@ -152,6 +152,7 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   r.query.emplace(size_query_for(model, r.bg, r.sizes.h));                  // sizing/ (4.2)
   MeshOptions meshing = o.meshing;
   meshing.expected_triangles = r.estimate.per_face;
+  meshing.deviation = r.params.deviation;
   meshing.on_face_done = [&r](int done, int total) { r.clock.faces(done, total); };
   r.mesh = mesh_surface(model, *r.query, meshing);                          // mesher/ (4.1)
   r.clock.lap("meshing");

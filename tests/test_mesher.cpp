@@ -7,6 +7,11 @@
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <ElCLib.hxx>
+#include <GC_MakeArcOfCircle.hxx>
+#include <gp_Circ.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -206,6 +211,56 @@ TEST_CASE("a sharp corner gets one thin triangle: long first segments where its 
   CHECK(q.below_12 == 2);  // one apex triangle per cap, with the CAD's 4 degrees
   CHECK(q.forced_below_12 == 2);
   CHECK(q.worst_angle == Approx(alpha * 180 / 3.14159265358979323846).epsilon(0.02));
+}
+
+TEST_CASE("with a deviation bound, a sharp corner's first segment is no longer than the chord of that height on the faces beside it", "[mesher]") {
+  // The 4-degree wedge again, its long sides now arcs of radius 50 bending
+  // apart, so the side faces on them are cylinders. A long first segment on
+  // an arc spans the cylinder with one chord; with --deviation it is at most
+  // the chord of that height there, 2 sqrt(2 R d - d^2).
+  const double R = 50, a = 2 * M_PI / 180, theta = 0.5, h = 2;
+  const gp_Pnt cu(-R * std::sin(a), R * std::cos(a), 0), cl(-R * std::sin(a), -R * std::cos(a), 0);
+  const double up0 = a - M_PI / 2, lo1 = M_PI / 2 - a;  // the apex's angle on each circle
+  const gp_Circ upper(gp_Ax2(cu, gp::DZ()), R), lower(gp_Ax2(cl, gp::DZ()), R);
+  const TopoDS_Edge e1 = BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(upper, up0, up0 + theta, true).Value()).Edge();
+  const TopoDS_Edge e3 = BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(lower, lo1 - theta, lo1, true).Value()).Edge();
+  const gp_Pnt pu = ElCLib::Value(up0 + theta, upper), pl = ElCLib::Value(lo1 - theta, lower);
+  const TopoDS_Edge e2 = BRepBuilderAPI_MakeEdge(pu, pl).Edge();
+  const TopoDS_Wire wire = BRepBuilderAPI_MakeWire(e1, e2, e3).Wire();
+  const TopoDS_Shape prism = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(wire).Face(), gp_Vec(0, 0, 20)).Shape();
+  const Model model = model_from_shape(prism);
+  REQUIRE(model.info().solids == 1);
+  const UniformSize size(h);
+  // First segment at the apex of each of the 4 arcs (chord length).
+  auto first_segments = [&](double deviation) {
+    const CurveMesh cm = discretise_curves(model, size, deviation);
+    std::vector<double> out;
+    for (int c = 1; c <= model.num_curves(); ++c) {
+      if (std::abs(model.curve_length(c) - R * theta) > 1e-6) continue;
+      const auto& nodes = cm.curves[c].node;
+      const bool apex_first = std::abs(cm.xyz[nodes.front()].x()) < 1e-9 && std::abs(cm.xyz[nodes.front()].y()) < 1e-9;
+      out.push_back((cm.xyz[apex_first ? nodes[1] : nodes[nodes.size() - 2]] -
+                     cm.xyz[apex_first ? nodes.front() : nodes.back()]).norm());
+    }
+    return out;
+  };
+  const double lead = 0.25 * h / std::tan(2 * a);  // no bound: the wedge is h/4 wide there
+  auto chord = [&](double arc) { return 2 * R * std::sin(arc / (2 * R)); };
+  for (double d : first_segments(0)) CHECK(d == Approx(chord(lead)).epsilon(2e-3));
+  const double cap = 2 * std::sqrt(2 * R * 0.1 - 0.01);  // under the lead
+  REQUIRE(cap < lead);
+  for (double d : first_segments(0.1)) CHECK(d == Approx(chord(cap)).epsilon(2e-3));
+  // A bound whose chord is under h leaves no long first segment at all.
+  for (double d : first_segments(0.01)) {
+    CHECK(d > 0.9 * h);  // an ordinary step: the arc in equal steps of about h
+    CHECK(d < 1.1 * h);
+  }
+  CHECK(first_segments(0.01).size() == 4);
+  MeshOptions o;
+  o.deviation = 0.1;
+  const SurfaceMesh m = mesh_surface(model, size, o);
+  const MeshQuality q = mesh_quality(m, model, size);
+  require_valid_closed(model, m, q, 1.0);
 }
 
 TEST_CASE("OCCT solids mesh watertight, valid, on the CAD area, with good angles", "[mesher]") {
