@@ -147,7 +147,8 @@ def sweep(a):
     # gives one point per model.
     # sizemesh: deviation bounds with phi_c = 30; the coarse ones also with phi_c = 90
     # (at a coarse deviation, 30 degrees per element across small fillets sets the floor).
-    levels = {"sizemesh": [(1.28e-2, 90), (6.4e-3, 90), (3.2e-3, 90), (1.6e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3,
+    levels = {"sizemesh": [(1.28e-2, 90), (9.05e-3, 90), (6.4e-3, 90), (4.53e-3, 90), (3.2e-3, 90), (2.26e-3, 90),
+                           (1.6e-3, 90), (1.13e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3,
                            8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]

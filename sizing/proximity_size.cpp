@@ -6,6 +6,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "sizing/curvature_size.h"
 #include "sizing/size_map.h"
 #include "geometry/triangle_bvh.h"
 
@@ -19,6 +20,29 @@ double below_accuracy(const SizingParams& p) { return 2 * p.deviation; }
 double face_mu(const SizingParams& p, int face) {
   auto it = p.face_mu_d.find(face);
   return it == p.face_mu_d.end() ? p.mu_d : it->second;
+}
+
+// With a deviation bound delta, elements across a face of width w at vertex v:
+// one where the face is flat enough there that a chord across all of it stays
+// within delta (its deviation size, the chord of height delta, is at least w):
+// more elements across would not bring the mesh closer to the surface, and one
+// element of size w is well shaped. Elsewhere (and without a bound, or where
+// the curvature cannot be evaluated) mu_d, the paper's count.
+double elements_across(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, int face, int v,
+                       double w) {
+  const double mu = face_mu(p, face);
+  if (!(p.deviation > 0) || !(mu > 1)) return mu;
+  for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
+    if (bg.use_face[u] != face) continue;
+    double k = 0;
+    try {
+      if (!g.max_curvature(face, bg.patches[face - 1].uv[bg.use_local[u]], k)) return mu;
+    } catch (const Error&) {
+      return mu;
+    }
+    return deviation_size(k, p.deviation) >= w ? 1.0 : mu;
+  }
+  return mu;
 }
 
 // The width of one face across itself at each of its boundary vertices: from
@@ -107,6 +131,8 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
 // the accuracy asked for (the whole strip lies within delta of one curve):
 // its width sets no size, and it is spanned by elements as long as its
 // neighbours' (thin triangles the report counts as forced by a narrow face).
+// A wider face gets one element across where it is flat enough for that
+// (elements_across), mu_d where it is curved.
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
@@ -116,7 +142,8 @@ std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh
   std::vector<double> h(bg.num_vertices(), kNoLimit);
   for (size_t i = 0; i < widths.size(); ++i)
     for (const auto& [v, w] : widths[i])
-      if (!(w < below_accuracy(p))) h[v] = std::min(h[v], w / face_mu(p, static_cast<int>(i) + 1));
+      if (!(w < below_accuracy(p)))
+        h[v] = std::min(h[v], w / elements_across(g, bg, p, static_cast<int>(i) + 1, v, w));
   return h;
 }
 

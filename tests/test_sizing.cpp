@@ -3,11 +3,14 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 
 #include <catch2/catch.hpp>
@@ -172,17 +175,54 @@ TEST_CASE("with a deviation bound, faces narrower and curves shorter than twice 
   BackgroundMesh bg = build_background_mesh(m);
   SizingParams p;
   auto smallest = [&](const std::vector<double>& h) { return *std::min_element(h.begin(), h.end()); };
+  // With a bound, a flat face wider than 2 delta gets one element across
+  // (more would not bring the mesh closer to the plane), not mu_d.
   for (double delta : {0.0, 0.4, 0.6}) {
     p.deviation = delta;
     const std::vector<double> face = face_proximity_sizes(m, bg, p), curve = curve_length_sizes(m, bg, p);
     INFO("deviation " << delta);
-    if (delta < 0.5) {
+    if (delta == 0) {
       CHECK(smallest(face) == Approx(1.0 / p.mu_d));
       CHECK(smallest(curve) == Approx(1.0));
+    } else if (delta < 0.5) {
+      CHECK(smallest(face) == Approx(1.0));
+      CHECK(smallest(curve) == Approx(1.0));
     } else {
-      CHECK(smallest(face) == Approx(100.0 / p.mu_d));  // the big faces' own width still counts
+      CHECK(smallest(face) == Approx(100.0));  // the big faces' own width still counts
       CHECK(smallest(curve) == Approx(100.0));
     }
+  }
+}
+
+TEST_CASE("with a deviation bound, a curved narrow face keeps mu_d elements across until one chord across it is within the bound") {
+  // A box edge rounded with radius 2: the fillet is a quarter cylinder whose
+  // width across (the chord, sqrt(2) r) is 2.83. A chord of height delta on
+  // it is 2 sqrt(2 r delta - delta^2): 1.25 at delta = 0.1, under the width,
+  // so the fillet keeps mu_d = 2 elements across (1.41); 3.46 at delta = 1,
+  // over it, so one element across is as close to the surface (2.83).
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(100.0, 100.0, 10.0).Shape();
+  BRepFilletAPI_MakeFillet fillet(box);
+  TopExp_Explorer ex(box, TopAbs_EDGE);
+  fillet.Add(2.0, TopoDS::Edge(ex.Current()));
+  Model m = model_from_shape(fillet.Shape());
+  BackgroundMesh bg = build_background_mesh(m);
+  int cylinder = 0;  // the fillet: pi r / 2 times its edge's length (10 or 100), the smallest face
+  for (int f = 1; f <= m.num_faces(); ++f)
+    if (cylinder == 0 || m.face_area(f) < m.face_area(cylinder)) cylinder = f;
+  REQUIRE(m.face_area(cylinder) < 400);
+  const double width = std::sqrt(2.0) * 2.0;  // the chord across a quarter circle of radius 2
+  SizingParams p;
+  auto on_fillet = [&](const std::vector<double>& h) {
+    double least = kNoLimit;
+    for (int v : bg.patches[cylinder - 1].vertex) least = std::min(least, h[v]);
+    return least;
+  };
+  for (double delta : {0.0, 0.1, 1.0}) {
+    p.deviation = delta;
+    INFO("deviation " << delta);
+    const double h = on_fillet(face_proximity_sizes(m, bg, p));
+    if (delta < 0.5) CHECK(h == Approx(width / p.mu_d).epsilon(0.02));
+    else CHECK(h == Approx(width).epsilon(0.02));
   }
 }
 
