@@ -62,14 +62,14 @@ class Leads {
   // No bound where the face is flat or its curvature cannot be evaluated.
   double deviation_cap(Link l, int face, double deviation) const {
     const CurveSamples& s = s_[l.curve];
-    double k = 0;
+    Vec2 uv;
     try {
-      const Vec2 uv = g_.eval_pcurve(l.curve, face, 0, l.end == 0 ? s.t.front() : s.t.back());
-      if (!g_.max_curvature(face, uv, k)) return std::numeric_limits<double>::infinity();
+      uv = g_.eval_pcurve(l.curve, face, 0, l.end == 0 ? s.t.front() : s.t.back());
     } catch (const Error&) {
       return std::numeric_limits<double>::infinity();
     }
-    return deviation_size(k, deviation);
+    const double cap = face_deviation_size(g_, face, uv, deviation);
+    return std::isnan(cap) ? std::numeric_limits<double>::infinity() : cap;
   }
 
   // Longest first segment: kLeadShare of the curve, turning at most
@@ -133,9 +133,9 @@ class Leads {
 std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::vector<std::vector<FaceLoop>>& loops,
                                                 const std::vector<CurveSamples>& samples, double deviation) {
   Leads leads(g, samples);
-  // Faces on each curve: a first segment bounds all of them.
-  std::vector<std::vector<int>> curve_faces(samples.size());
-  for (size_t f = 1; f < loops.size(); ++f)
+  // Faces on each curve: under a deviation bound a first segment bounds all of them.
+  std::vector<std::vector<int>> curve_faces(deviation > 0 ? samples.size() : 0);
+  for (size_t f = 1; f < loops.size() && deviation > 0; ++f)
     for (const FaceLoop& loop : loops[f])
       for (const CurveUse& u : loop)
         if (u.curve > 0 && u.curve < static_cast<int>(curve_faces.size())) curve_faces[u.curve].push_back(static_cast<int>(f));

@@ -26,6 +26,9 @@ double chord_size(double k, double phi_deg);
 // Chord of an arc of curvature k whose height is delta: 2 sqrt(2 r delta - delta^2)
 // (2 r when delta >= r); kNoLimit for k <= 0 or delta <= 0.
 double deviation_size(double k, double delta);
+// deviation_size of a face's largest curvature at uv; NaN where the kernel
+// cannot evaluate the curvature there (the caller decides what that means).
+double face_deviation_size(const Geometry& g, int face, const Vec2& uv, double delta);
 
 // The curvature size at one point of a face, and of a curve (kNoLimit where flat or undefined).
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p);

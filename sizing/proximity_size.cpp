@@ -32,16 +32,9 @@ double elements_across(const Geometry& g, const BackgroundMesh& bg, const Sizing
                        double w) {
   const double mu = face_mu(p, face);
   if (!(p.deviation > 0) || !(mu > 1)) return mu;
-  for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
-    if (bg.use_face[u] != face) continue;
-    double k = 0;
-    try {
-      if (!g.max_curvature(face, bg.patches[face - 1].uv[bg.use_local[u]], k)) return mu;
-    } catch (const Error&) {
-      return mu;
-    }
-    return deviation_size(k, p.deviation) >= w ? 1.0 : mu;
-  }
+  for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u)
+    if (bg.use_face[u] == face)  // NaN (curvature unknown) compares false: mu_d
+      return face_deviation_size(g, face, bg.patches[face - 1].uv[bg.use_local[u]], p.deviation) >= w ? 1.0 : mu;
   return mu;
 }
 
