@@ -5,6 +5,7 @@
 // call from several threads at once.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "geometry/types.h"
@@ -47,8 +48,15 @@ class Geometry {
 
   // --- faces ---
   virtual SurfaceD1 eval_face(int face, const Vec2& uv) const = 0;
-  // Largest absolute principal curvature at uv (1/length); false where it is undefined.
-  virtual bool max_curvature(int face, const Vec2& uv, double& k) const = 0;
+  // Principal curvatures at uv (1/length, signed, |k1| >= |k2|); false where they are undefined.
+  virtual bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const = 0;
+  // Largest absolute principal curvature at uv; false where it is undefined.
+  bool max_curvature(int face, const Vec2& uv, double& k) const {
+    double k1, k2;
+    if (!principal_curvatures(face, uv, k1, k2)) return false;
+    k = std::abs(k1);
+    return std::isfinite(k);
+  }
   // True where the face's orientation in its shell flips the surface normal.
   virtual bool face_reversed(int face) const = 0;
   virtual UVBox face_uv_bounds(int face) const = 0;

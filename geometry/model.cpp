@@ -393,13 +393,15 @@ SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
   return {to_vec(p), to_vec(du), to_vec(dv)};
 }
 
-bool Model::max_curvature(int face, const Vec2& uv, double& k) const {
+bool Model::principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const {
   const auto& s = impl_->face_data[face - 1].surface;
   try {
     GeomLProp_SLProps props(s, uv.x(), uv.y(), 2, Precision::Confusion());
     if (!props.IsCurvatureDefined()) return false;
-    k = std::max(std::abs(props.MaxCurvature()), std::abs(props.MinCurvature()));
-    return std::isfinite(k);
+    k1 = props.MaxCurvature();
+    k2 = props.MinCurvature();
+    if (std::abs(k2) > std::abs(k1)) std::swap(k1, k2);
+    return std::isfinite(k1) && std::isfinite(k2);
   } catch (const Standard_Failure&) {
     return false;
   }

@@ -89,7 +89,7 @@ class Model : public Geometry {
   int num_curves() const override;
   int num_points() const override;
   SurfaceD1 eval_face(int face, const Vec2& uv) const override;
-  bool max_curvature(int face, const Vec2& uv, double& k) const override;
+  bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const override;
   bool face_reversed(int face) const override;
   UVBox face_uv_bounds(int face) const override;
   double face_period_u(int face) const override;

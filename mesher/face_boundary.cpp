@@ -142,6 +142,7 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs) 
         if ((fm.uv[k] - a.uv).norm() <= same_uv) id = k;
       if (id < 0) {
         id = fm.add_node(a.uv, sa, a.global, a.pole);
+        fm.shared_xyz[id] = cm.xyz[a.global];
         nodes_of[a.global].push_back(id);
       }
       ids.push_back(id);

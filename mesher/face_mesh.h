@@ -20,6 +20,9 @@ struct FaceMesh {
   std::vector<SurfaceSample> s;
   std::vector<int> global;
   std::vector<char> pole;
+  // Where a boundary node lies in the assembled mesh: the shared curve node's
+  // xyz, which may lie off S(uv) by the CAD's edge tolerance (S(uv) for the rest).
+  std::vector<Vec3> shared_xyz;
   std::vector<std::vector<int>> loops;  // boundary, domain on the left; loops[0] outer
   std::vector<std::array<int, 3>> tris;
 
@@ -28,10 +31,13 @@ struct FaceMesh {
     s.push_back(sample);
     global.push_back(global_id);
     pole.push_back(is_pole);
+    shared_xyz.push_back(sample.p);
     return static_cast<int>(uv.size()) - 1;
   }
   int num_nodes() const { return static_cast<int>(uv.size()); }
   bool boundary(int i) const { return global[i] >= 0; }
+  // Node i's position in the assembled mesh.
+  const Vec3& position(int i) const { return global[i] >= 0 ? shared_xyz[i] : s[i].p; }
   // Two corners on the same pole: zero area in space, dropped at assembly.
   bool pole_triangle(const std::array<int, 3>& t) const {
     for (int k = 0; k < 3; ++k)

@@ -91,7 +91,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
     if (!fr.ok) {
       r.reason = fr.reason;
     } else {
-      optimise(r.mesh, fs, o.optimise_passes);
+      optimise(r.mesh, fs, o.optimise_passes, o.deviation);
       r.seconds_optimise = clock.lap();
       for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
       r.ok = true;

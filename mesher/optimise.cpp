@@ -1,6 +1,7 @@
 #include "mesher/optimise.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "geometry/predicates.h"
@@ -210,6 +211,111 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
   return moved;
 }
 
+// One round of splits of edges inside the face that are too long: longer
+// than kSplitAbove times the size wanted along them (the geometric mean of
+// their ends' sizes), or, under a deviation bound d > 0, with their middle or
+// (for the longest edge of a triangle) the triangle's centre further than d
+// from the surface at the same uv. Where the front closed on a far node the
+// surface lies furthest from the mesh: a chord's height grows with its
+// square. Each edge gets a node at its uv midpoint and its two triangles
+// become four, kept only if all four are valid and none has an angle below
+// both 20 degrees and the smallest of the pair it replaces. Worst edges
+// first, each triangle split once per round.
+constexpr double kSplitAbove = 1.4;
+constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin triangle
+int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation) {
+  const std::vector<std::array<int, 3>> nbr = neighbours(fm);
+  // How far the point of the mesh at uv (xyz) lies off the surface there, in d.
+  auto off = [&](const Vec2& uv, const Vec3& xyz) {
+    try {
+      return (fs.eval_shape(uv).p - xyz).norm() / deviation;
+    } catch (const EvaluationError&) {
+      return 0.0;
+    }
+  };
+  struct Long {
+    double excess;  // over 1: by length (in kSplitAbove sizes) or off the surface (in d)
+    int t, k;
+  };
+  std::vector<Long> longs;
+  for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t) {
+    if (fm.pole_triangle(fm.tris[t])) continue;
+    const auto& tr = fm.tris[t];
+    int longest = -1;
+    double longest_len = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int t2 = nbr[t][k];
+      if (t2 < 0 || fm.pole_triangle(fm.tris[t2])) continue;
+      const int a = tr[k], b = tr[(k + 1) % 3];
+      const double len = (fm.position(a) - fm.position(b)).norm();
+      if (len > longest_len) {
+        longest_len = len;
+        longest = k;
+      }
+      if (t2 < t) continue;  // each edge once
+      const double h = std::sqrt(fm.s[a].h * fm.s[b].h);
+      double excess = h > 0 ? len / (kSplitAbove * h) : 0;
+      if (deviation > 0)
+        excess = std::max(excess, off(0.5 * (fm.uv[a] + fm.uv[b]), 0.5 * (fm.position(a) + fm.position(b))));
+      if (excess > 1) longs.push_back({excess, t, k});
+    }
+    if (deviation > 0 && longest >= 0) {
+      const double centre = off((fm.uv[tr[0]] + fm.uv[tr[1]] + fm.uv[tr[2]]) / 3.0,
+                                (fm.position(tr[0]) + fm.position(tr[1]) + fm.position(tr[2])) / 3.0);
+      if (centre > 1) longs.push_back({centre, t, longest});
+    }
+  }
+  std::sort(longs.begin(), longs.end(), [](const Long& x, const Long& y) {
+    return x.excess != y.excess ? x.excess > y.excess : x.t != y.t ? x.t < y.t : x.k < y.k;
+  });
+  std::vector<char> touched(fm.tris.size(), 0);
+  int splits = 0;
+  for (const Long& l : longs) {
+    const int t1 = l.t, t2 = nbr[t1][l.k];
+    if (t2 < 0 || touched[t1] || touched[t2]) continue;
+    const auto T1 = fm.tris[t1], T2 = fm.tris[t2];
+    const int a = T1[l.k], b = T1[(l.k + 1) % 3], c = T1[(l.k + 2) % 3];
+    int j = 0;
+    while (j < 3 && !(T2[j] == b && T2[(j + 1) % 3] == a)) ++j;
+    if (j == 3) continue;
+    const int d = T2[(j + 2) % 3];
+    const Vec2 uv = 0.5 * (fm.uv[a] + fm.uv[b]);
+    SurfaceSample sm;
+    try {
+      sm = fs.eval(uv);
+    } catch (const EvaluationError&) {
+      continue;
+    }
+    // Angles where the nodes lie in the assembled mesh (boundary nodes at their curve's xyz).
+    auto angle = [&](const std::array<int, 3>& t) {
+      return min_angle_deg(fm.position(t[0]), fm.position(t[1]), fm.position(t[2]));
+    };
+    const double angle_old = std::min(angle(T1), angle(T2));
+    const std::array<Vec2, 4> u{fm.uv[a], fm.uv[b], fm.uv[c], fm.uv[d]};
+    const std::array<const SurfaceSample*, 4> p{&fm.s[a], &fm.s[b], &fm.s[c], &fm.s[d]};
+    const std::array<const Vec3*, 4> x{&fm.position(a), &fm.position(b), &fm.position(c), &fm.position(d)};
+    // (a, m, c), (m, b, c), (b, m, d), (m, a, d): corners as indices into u / p, 4 for m.
+    const int corners[4][3] = {{0, 4, 2}, {4, 1, 2}, {1, 4, 3}, {4, 0, 3}};
+    bool keep = true;
+    for (const auto& cn : corners) {
+      auto U = [&](int i) { return i == 4 ? uv : u[i]; };
+      auto P = [&](int i) -> const SurfaceSample& { return i == 4 ? sm : *p[i]; };
+      auto X = [&](int i) -> const Vec3& { return i == 4 ? sm.p : *x[i]; };
+      keep = keep && shape(U(cn[0]), U(cn[1]), U(cn[2]), P(cn[0]), P(cn[1]), P(cn[2]), fs) >= 0 &&
+             min_angle_deg(X(cn[0]), X(cn[1]), X(cn[2])) >= std::min(angle_old, kSplitMinAngle);
+    }
+    if (!keep) continue;
+    const int m = fm.add_node(uv, sm, -1);
+    fm.tris[t1] = {a, m, c};
+    fm.tris[t2] = {b, m, d};
+    fm.tris.push_back({m, b, c});
+    fm.tris.push_back({m, a, d});
+    touched[t1] = touched[t2] = 1;
+    ++splits;
+  }
+  return splits;
+}
+
 }  // namespace
 
 int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
@@ -278,19 +384,27 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
   return moved;
 }
 
-void optimise(FaceMesh& fm, FaceSurface& fs, int passes) {
+void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
   if (passes <= 0 || fm.tris.empty()) return;
   std::vector<std::array<int, 3>> nbr = neighbours(fm);
-  for (int p = 0; p < passes; ++p) {
+  auto swaps = [&] {
     for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
     }
+  };
+  for (int p = 0; p < passes; ++p) {
+    swaps();
     smooth_sweep(fm, fs);
   }
-  for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
+  swaps();
+  // Edges still too long after smoothing are split, and the split region smoothed.
+  int splits = 0;
+  for (int round = 0; round < 3; ++round) {
+    const int n = split_long_edges(fm, fs, deviation);
+    splits += n;
+    if (n == 0) break;
   }
-  if (rescue_thin_triangles(fm, fs) > 0)
-    for (int k = 0; k < 4 && swap_sweep(fm, fs, nbr) > 0; ++k) {
-    }
+  if (splits > 0) nbr = neighbours(fm);
+  if (rescue_thin_triangles(fm, fs) > 0) swaps();
 }
 
 }  // namespace sizemesh

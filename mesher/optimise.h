@@ -1,7 +1,8 @@
 // Mesh improvement of one face after the front closes: edge swaps judged by
 // shape in space, smoothing of the nodes inside the face (moved in uv,
-// evaluated on the surface), and a last search for nodes next to thin
-// triangles. Validity is kept throughout: triangles stay
+// evaluated on the surface), splits of the edges left too long for the size
+// map or, with deviation > 0, too far off the surface, and a last search for
+// nodes next to thin triangles. Validity is kept throughout: triangles stay
 // counter-clockwise in uv and facing the surface normal in space; boundary
 // nodes and edges are fixed.
 //
@@ -12,7 +13,7 @@
 
 namespace sizemesh {
 
-void optimise(FaceMesh& fm, FaceSurface& fs, int passes);
+void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation = 0);
 
 // Inner nodes next to a triangle under 15 degrees, which smoothing towards
 // the neighbours' mean can leave there (a node far off a short boundary

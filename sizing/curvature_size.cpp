@@ -33,23 +33,33 @@ double local(const std::map<int, double>& m, int id, double fallback) {
   auto it = m.find(id);
   return it == m.end() ? fallback : it->second;
 }
-// Curvature at uv; at a singular point (a pole, an apex) where it is undefined,
-// the curvature just beside it, a small step toward the face's uv centre.
-bool face_curvature(const Geometry& g, int face, const Vec2& uv, double& k) {
-  if (g.max_curvature(face, uv, k)) return true;
+// Principal curvatures at uv; at a singular point (a pole, an apex) where they
+// are undefined, those just beside it, a small step toward the face's uv centre.
+bool face_curvatures(const Geometry& g, int face, const Vec2& uv, double& k1, double& k2) {
+  if (g.principal_curvatures(face, uv, k1, k2)) return true;
   const UVBox box = g.face_uv_bounds(face);
   const Vec2 centre = 0.5 * (box.lo + box.hi);
   for (double step : {1e-6, 1e-4, 1e-2})
-    if (g.max_curvature(face, uv + step * (centre - uv), k)) return true;
+    if (g.principal_curvatures(face, uv + step * (centre - uv), k1, k2)) return true;
   return false;
 }
 
 }  // namespace
 
+double triangle_deviation_curvature(double k1, double k2) {
+  // An equilateral triangle of side h with its corners on the surface
+  // z = (k1 x^2 + k2 y^2) / 2 is off it by k1 h^2 / 8 at the middle of a side
+  // across the k1 direction and by (k1 + k2) h^2 / 12 at its centre, whatever
+  // its orientation (the mean of the corners' heights): the larger, written as
+  // the curvature of an arc whose chord h has that height.
+  return std::max(std::abs(k1), std::abs(k1 + k2) * 2.0 / 3.0);
+}
+
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
-  double k;
-  if (!face_curvature(g, face, uv, k)) return kNoLimit;
-  return std::min(chord_size(k, local(p.face_phi_c_deg, face, p.phi_c_deg)), deviation_size(k, p.deviation));
+  double k1, k2;
+  if (!face_curvatures(g, face, uv, k1, k2)) return kNoLimit;
+  return std::min(chord_size(std::abs(k1), local(p.face_phi_c_deg, face, p.phi_c_deg)),
+                  deviation_size(triangle_deviation_curvature(k1, k2), p.deviation));
 }
 
 double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p) {

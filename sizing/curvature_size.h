@@ -3,7 +3,9 @@
 // the vertex lies on (at its uv there), and for vertices on curves also the
 // curve's own curvature. Local phi_c per face and per curve apply where set.
 // Beyond the paper, an optional deviation bound delta (p.deviation > 0) caps it
-// by the chord whose height off the arc is delta: 2 sqrt(2 r delta - delta^2).
+// by the chord whose height off the arc is delta: 2 sqrt(2 r delta - delta^2),
+// on faces with r from triangle_deviation_curvature (an element's centre is
+// further off a doubly curved face than the middles of its sides).
 //
 // Inputs:  g geometry, bg background mesh, p parameters (phi_c, local phi_c)
 // Output:  #V sizes, kNoLimit where the surface is flat or the curvature is
@@ -26,6 +28,10 @@ double chord_size(double k, double phi_deg);
 // Chord of an arc of curvature k whose height is delta: 2 sqrt(2 r delta - delta^2)
 // (2 r when delta >= r); kNoLimit for k <= 0 or delta <= 0.
 double deviation_size(double k, double delta);
+// The curvature whose arc's chord h lies as far off it as an equilateral
+// triangle of side h lies off a surface of principal curvatures k1, k2:
+// max(|k1|, 2/3 |k1 + k2|) (|k1| >= |k2|; 4/3 k on a sphere, k on a cylinder).
+double triangle_deviation_curvature(double k1, double k2);
 // deviation_size of a face's largest curvature at uv; NaN where the kernel
 // cannot evaluate the curvature there (the caller decides what that means).
 double face_deviation_size(const Geometry& g, int face, const Vec2& uv, double delta);

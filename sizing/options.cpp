@@ -11,7 +11,7 @@ const std::vector<SizingOption>& sizing_options() {
       {"h_min", "--h-min", &P::h_min, nullptr, {}, "smallest element size (model units)"},
       {"h_max", "--h-max", &P::h_max, nullptr, {}, "largest element size (model units)"},
       {"deviation", "--deviation", &P::deviation, nullptr, {},
-       "curvature: largest chord height of an element edge off the surface (model units; 0: no bound)"},
+       "curvature: largest distance of the mesh off the surface (model units; 0: no bound)"},
       {"proximity", "--no-proximity", nullptr, &P::proximity, {},
        "size from curvature (and user sizes) alone: no face width, curve length or gap sizes"},
       {"local_proximity", "--no-gaps", nullptr, &P::local_proximity, {},

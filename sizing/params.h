@@ -33,7 +33,7 @@ struct SizingParams {
   double h_max = 0;         // 0: h_max_rel * bounding-box diagonal
   double h_min_rel = 5e-4;
   double h_max_rel = 0.05;
-  double deviation = 0;     // curvature: largest chord height of an element edge (model units); 0: none
+  double deviation = 0;     // curvature: largest distance of the mesh off the surface (model units); 0: none
   bool proximity = true;        // all proximity sizes: face width, curve length and gaps (paper 3.2.2)
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   GapSide gap_side = GapSide::Auto;

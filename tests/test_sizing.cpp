@@ -71,13 +71,28 @@ TEST_CASE("sphere of radius r gives h_c = 2 r sin(phi_c / 2) at every vertex, po
   }
 }
 
-TEST_CASE("a deviation bound caps the curvature size by the chord of height delta") {
+TEST_CASE("a deviation bound caps the curvature size: a triangle's centre on a sphere, a side's middle on a cylinder") {
   const double r = 2.5, delta = 0.01;
   SizingParams p = curvature_only(90.0);  // 2 r sin(45 deg) = 3.5: the deviation bound is the smaller
   p.deviation = delta;
+  // On a sphere an equilateral triangle's centre is the furthest point off it:
+  // (k1 + k2) h^2 / 12 = h^2 / (6 r), the height of the chord h on an arc of
+  // radius 3 r / 4, so h = 2 sqrt(2 (3 r / 4) delta - delta^2) = 0.387.
   Sized s = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
-  const double expected = 2 * std::sqrt(2 * r * delta - delta * delta);  // 0.447
-  for (int v = 0; v < s.bg.num_vertices(); ++v) CHECK(s.m.h_curvature[v] == Approx(expected).epsilon(0.01));
+  const double on_sphere = 2 * std::sqrt(1.5 * r * delta - delta * delta);
+  for (int v = 0; v < s.bg.num_vertices(); ++v) CHECK(s.m.h_curvature[v] == Approx(on_sphere).epsilon(0.01));
+  // On a cylinder the middle of a side across the axis is: the chord of height
+  // delta on radius r, 0.447, at every vertex of the side (the caps are flat,
+  // their circles have the side's curvature).
+  Sized c = size_shape(BRepPrimAPI_MakeCylinder(r, 10.0).Shape(), p);
+  const double on_cylinder = 2 * std::sqrt(2 * r * delta - delta * delta);
+  int side = 0;
+  for (int v = 0; v < c.bg.num_vertices(); ++v)
+    if (std::abs(std::hypot(c.bg.xyz[v].x(), c.bg.xyz[v].y()) - r) < 1e-6) {
+      ++side;
+      CHECK(c.m.h_curvature[v] == Approx(on_cylinder).epsilon(0.01));
+    }
+  CHECK(side > 0);
   p.deviation = 0;  // none: back to 2 r sin(phi_c / 2)
   Sized off = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
   for (int v = 0; v < off.bg.num_vertices(); ++v)
