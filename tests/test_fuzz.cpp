@@ -27,16 +27,17 @@
 #include <unistd.h>
 
 #include "tests/cli_runner.h"
+#include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+// Scratch files in one folder of this process, removed at its end.
 std::string scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sizemesh_fuzz_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return (dir / name).string();
+  static const sizemesh::test::TempDir dir("fuzz");
+  return dir / name;
 }
 
 void write_file(const std::string& path, const std::string& bytes) {

@@ -23,6 +23,7 @@
 #include "sizing/smooth.h"
 #include "tests/cli_runner.h"
 #include "tests/exact_intersections.h"
+#include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -30,8 +31,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Scratch files in one folder of this process, removed at its end.
 std::string scratch(const std::string& name) {
-  return (fs::temp_directory_path() / ("sizemesh_pipe_" + std::to_string(::getpid()) + "_" + name)).string();
+  static const test::TempDir dir("pipe");
+  return dir / name;
 }
 
 nlohmann::json run_and_report(const std::string& args, const std::string& tag) {
