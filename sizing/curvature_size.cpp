@@ -55,16 +55,20 @@ double triangle_deviation_curvature(double k1, double k2) {
   return std::max(std::abs(k1), std::abs(k1 + k2) * 2.0 / 3.0);
 }
 
+bool below_accuracy(double k, const SizingParams& p) {
+  return p.deviation > 0 && std::abs(k) * p.deviation >= 1;  // r <= delta
+}
+
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
   double k1, k2;
-  if (!face_curvatures(g, face, uv, k1, k2)) return kNoLimit;
+  if (!face_curvatures(g, face, uv, k1, k2) || below_accuracy(k1, p)) return kNoLimit;
   return std::min(chord_size(std::abs(k1), local(p.face_phi_c_deg, face, p.phi_c_deg)),
                   deviation_size(triangle_deviation_curvature(k1, k2), p.deviation));
 }
 
 double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p) {
   double k;
-  if (!g.curve_curvature(curve, t, k)) return kNoLimit;
+  if (!g.curve_curvature(curve, t, k) || below_accuracy(k, p)) return kNoLimit;
   return std::min(chord_size(k, local(p.curve_phi_c_deg, curve, p.phi_c_deg)), deviation_size(k, p.deviation));
 }
 

@@ -23,18 +23,21 @@ double face_mu(const SizingParams& p, int face) {
 }
 
 // With a deviation bound delta, elements across a face of width w at vertex v:
-// one where the face is flat enough there that a chord across all of it stays
-// within delta (its deviation size, the chord of height delta, is at least w):
-// more elements across would not bring the mesh closer to the surface, and one
-// element of size w is well shaped. Elsewhere (and without a bound, or where
-// the curvature cannot be evaluated) mu_d, the paper's count.
+// one half where the face is flat enough there that a chord across all of it
+// stays within delta (its deviation size, the chord of height delta, is at
+// least w). More elements across would not bring the mesh closer to the
+// surface; one row of triangles spans the face, each twice as long as the face
+// is wide (about right-angled and isosceles, its smallest angle near 45
+// degrees), so the size the face hands on to its neighbours, and the
+// gradation spreads, is 2 w rather than w. Elsewhere (and without a bound, or
+// where the curvature cannot be evaluated) mu_d, the paper's count.
 double elements_across(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, int face, int v,
                        double w) {
   const double mu = face_mu(p, face);
   if (!(p.deviation > 0) || !(mu > 1)) return mu;
   for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u)
     if (bg.use_face[u] == face)  // NaN (curvature unknown) compares false: mu_d
-      return face_deviation_size(g, face, bg.patches[face - 1].uv[bg.use_local[u]], p.deviation) >= w ? 1.0 : mu;
+      return face_deviation_size(g, face, bg.patches[face - 1].uv[bg.use_local[u]], p.deviation) >= w ? 0.5 : mu;
   return mu;
 }
 
@@ -124,8 +127,8 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
 // the accuracy asked for (the whole strip lies within delta of one curve):
 // its width sets no size, and it is spanned by elements as long as its
 // neighbours' (thin triangles the report counts as forced by a narrow face).
-// A wider face gets one element across where it is flat enough for that
-// (elements_across), mu_d where it is curved.
+// A wider face gets one row of elements twice its width long where it is flat
+// enough for that (elements_across), mu_d where it is curved.
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());

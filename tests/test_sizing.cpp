@@ -9,6 +9,8 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
@@ -97,6 +99,22 @@ TEST_CASE("a deviation bound caps the curvature size: a triangle's centre on a s
   Sized off = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
   for (int v = 0; v < off.bg.num_vertices(); ++v)
     CHECK(off.m.h_curvature[v] == Approx(2 * r * std::sin(M_PI / 4)).epsilon(0.01));
+}
+
+TEST_CASE("with a deviation bound, radii of curvature under it set no curvature size") {
+  // A sphere of radius 2.5 lies within 2.5 of any chord across it: a bound of
+  // 3 asks for less accuracy than its curvature, so neither the bound nor
+  // phi_c sizes it; a bound of 1 still does (phi_c's 2 r sin(45 deg) = 3.54
+  // and the chord of height 1 on radius 3 r / 4, 3.32: the smaller).
+  const double r = 2.5;
+  SizingParams p = curvature_only(90.0);
+  p.deviation = 3.0;
+  Sized above = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
+  for (int v = 0; v < above.bg.num_vertices(); ++v) CHECK(above.m.h_curvature[v] == kNoLimit);
+  p.deviation = 1.0;
+  Sized below = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
+  const double expected = 2 * std::sqrt(2 * 0.75 * r * 1.0 - 1.0);
+  for (int v = 0; v < below.bg.num_vertices(); ++v) CHECK(below.m.h_curvature[v] == Approx(expected).epsilon(0.01));
 }
 
 TEST_CASE("face proximity is the width across the face: a disc's diameter, not 2 A / l") {
@@ -190,8 +208,9 @@ TEST_CASE("with a deviation bound, faces narrower and curves shorter than twice 
   BackgroundMesh bg = build_background_mesh(m);
   SizingParams p;
   auto smallest = [&](const std::vector<double>& h) { return *std::min_element(h.begin(), h.end()); };
-  // With a bound, a flat face wider than 2 delta gets one element across
-  // (more would not bring the mesh closer to the plane), not mu_d.
+  // With a bound, a flat face wider than 2 delta gets one row of elements
+  // across, twice its width long (more would not bring the mesh closer to the
+  // plane), not mu_d: a size of 2.
   for (double delta : {0.0, 0.4, 0.6}) {
     p.deviation = delta;
     const std::vector<double> face = face_proximity_sizes(m, bg, p), curve = curve_length_sizes(m, bg, p);
@@ -200,10 +219,10 @@ TEST_CASE("with a deviation bound, faces narrower and curves shorter than twice 
       CHECK(smallest(face) == Approx(1.0 / p.mu_d));
       CHECK(smallest(curve) == Approx(1.0));
     } else if (delta < 0.5) {
-      CHECK(smallest(face) == Approx(1.0));
+      CHECK(smallest(face) == Approx(2.0));
       CHECK(smallest(curve) == Approx(1.0));
     } else {
-      CHECK(smallest(face) == Approx(100.0));  // the big faces' own width still counts
+      CHECK(smallest(face) == Approx(200.0));  // the big faces' own width still counts (twice: flat)
       CHECK(smallest(curve) == Approx(100.0));
     }
   }
@@ -214,17 +233,25 @@ TEST_CASE("with a deviation bound, a curved narrow face keeps mu_d elements acro
   // width across (the chord, sqrt(2) r) is 2.83. A chord of height delta on
   // it is 2 sqrt(2 r delta - delta^2): 1.25 at delta = 0.1, under the width,
   // so the fillet keeps mu_d = 2 elements across (1.41); 3.46 at delta = 1,
-  // over it, so one element across is as close to the surface (2.83).
+  // over it, so one row of elements across, twice the width long (5.66), is
+  // as close to the surface. The rounded edge is one 100 long, so that the
+  // fillet's width along itself (100 / mu_d) and the end faces' (10 wide) set
+  // larger sizes.
   const TopoDS_Shape box = BRepPrimAPI_MakeBox(100.0, 100.0, 10.0).Shape();
   BRepFilletAPI_MakeFillet fillet(box);
-  TopExp_Explorer ex(box, TopAbs_EDGE);
-  fillet.Add(2.0, TopoDS::Edge(ex.Current()));
+  for (TopExp_Explorer ex(box, TopAbs_EDGE); ex.More(); ex.Next()) {
+    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+    if (BRep_Tool::Pnt(TopExp::FirstVertex(e)).Distance(BRep_Tool::Pnt(TopExp::LastVertex(e))) > 99) {
+      fillet.Add(2.0, e);
+      break;
+    }
+  }
   Model m = model_from_shape(fillet.Shape());
   BackgroundMesh bg = build_background_mesh(m);
-  int cylinder = 0;  // the fillet: pi r / 2 times its edge's length (10 or 100), the smallest face
+  int cylinder = 0;  // the fillet: pi r / 2 times 100, the smallest face
   for (int f = 1; f <= m.num_faces(); ++f)
     if (cylinder == 0 || m.face_area(f) < m.face_area(cylinder)) cylinder = f;
-  REQUIRE(m.face_area(cylinder) < 400);
+  REQUIRE(m.face_area(cylinder) == Approx(M_PI * 100).epsilon(0.01));
   const double width = std::sqrt(2.0) * 2.0;  // the chord across a quarter circle of radius 2
   SizingParams p;
   auto on_fillet = [&](const std::vector<double>& h) {
@@ -237,7 +264,7 @@ TEST_CASE("with a deviation bound, a curved narrow face keeps mu_d elements acro
     INFO("deviation " << delta);
     const double h = on_fillet(face_proximity_sizes(m, bg, p));
     if (delta < 0.5) CHECK(h == Approx(width / p.mu_d).epsilon(0.02));
-    else CHECK(h == Approx(width).epsilon(0.02));
+    else CHECK(h == Approx(2 * width).epsilon(0.02));
   }
 }
 
