@@ -55,21 +55,30 @@ double triangle_deviation_curvature(double k1, double k2) {
   return std::max(std::abs(k1), std::abs(k1 + k2) * 2.0 / 3.0);
 }
 
+namespace {
 bool below_accuracy(double k, const SizingParams& p) {
   return p.deviation > 0 && std::abs(k) * p.deviation >= 1;  // r <= delta
 }
+// phi_c's size; under a deviation bound delta at least 2 delta: a chord of
+// 2 delta lies within delta of any arc of radius delta or more (the smaller
+// radii set no size), so a finer angular resolution resolves nothing the bound
+// asks for.
+double angular_size(double k, double phi_deg, const SizingParams& p) {
+  return std::max(chord_size(k, phi_deg), 2 * p.deviation);
+}
+}  // namespace
 
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
   double k1, k2;
   if (!face_curvatures(g, face, uv, k1, k2) || below_accuracy(k1, p)) return kNoLimit;
-  return std::min(chord_size(std::abs(k1), local(p.face_phi_c_deg, face, p.phi_c_deg)),
+  return std::min(angular_size(std::abs(k1), local(p.face_phi_c_deg, face, p.phi_c_deg), p),
                   deviation_size(triangle_deviation_curvature(k1, k2), p.deviation));
 }
 
 double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p) {
   double k;
   if (!g.curve_curvature(curve, t, k) || below_accuracy(k, p)) return kNoLimit;
-  return std::min(chord_size(k, local(p.curve_phi_c_deg, curve, p.phi_c_deg)), deviation_size(k, p.deviation));
+  return std::min(angular_size(k, local(p.curve_phi_c_deg, curve, p.phi_c_deg), p), deviation_size(k, p.deviation));
 }
 
 std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {

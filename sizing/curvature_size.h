@@ -5,7 +5,10 @@
 // Beyond the paper, an optional deviation bound delta (p.deviation > 0) caps it
 // by the chord whose height off the arc is delta: 2 sqrt(2 r delta - delta^2),
 // on faces with r from triangle_deviation_curvature (an element's centre is
-// further off a doubly curved face than the middles of its sides).
+// further off a doubly curved face than the middles of its sides). Under the
+// bound, radii r <= delta set no size (the whole arc lies within delta of its
+// chord) and phi_c's size is at least 2 delta (a chord of 2 delta lies within
+// delta of any larger arc).
 //
 // Inputs:  g geometry, bg background mesh, p parameters (phi_c, local phi_c)
 // Output:  #V sizes, kNoLimit where the surface is flat or the curvature is

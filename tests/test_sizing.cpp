@@ -101,7 +101,7 @@ TEST_CASE("a deviation bound caps the curvature size: a triangle's centre on a s
     CHECK(off.m.h_curvature[v] == Approx(2 * r * std::sin(M_PI / 4)).epsilon(0.01));
 }
 
-TEST_CASE("with a deviation bound, radii of curvature under it set no curvature size") {
+TEST_CASE("with a deviation bound, radii of curvature under it set no curvature size and phi_c none under twice it") {
   // A sphere of radius 2.5 lies within 2.5 of any chord across it: a bound of
   // 3 asks for less accuracy than its curvature, so neither the bound nor
   // phi_c sizes it; a bound of 1 still does (phi_c's 2 r sin(45 deg) = 3.54
@@ -115,6 +115,11 @@ TEST_CASE("with a deviation bound, radii of curvature under it set no curvature 
   Sized below = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
   const double expected = 2 * std::sqrt(2 * 0.75 * r * 1.0 - 1.0);
   for (int v = 0; v < below.bg.num_vertices(); ++v) CHECK(below.m.h_curvature[v] == Approx(expected).epsilon(0.01));
+  // phi_c = 5 asks for 2 r sin(2.5 deg) = 0.22, but no finer than 2 delta: a
+  // chord of 2 lies within 1 of this sphere, as of any arc of radius 1 or more.
+  p.phi_c_deg = 5;
+  Sized fine_angle = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), p);
+  for (int v = 0; v < fine_angle.bg.num_vertices(); ++v) CHECK(fine_angle.m.h_curvature[v] == Approx(2.0));
 }
 
 TEST_CASE("face proximity is the width across the face: a disc's diameter, not 2 A / l") {
