@@ -13,7 +13,7 @@ ratios against Gmsh. Never fails on numbers.
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
-with phi_c = 30, and with 90 at the coarse bounds; Netgen 6.2 ignores its meshing parameters on OCC geometry
+with phi_c = 30, and with 90 at the bounds down to 2.83e-4; Netgen 6.2 ignores its meshing parameters on OCC geometry
 from Python, so it gives one point), and for every sizemesh mesh the triangles a
 peer needs for the same maximum centroid distance are interpolated (log-log)
 between that peer's two bracketing meshes. The curves are also written as
@@ -145,11 +145,11 @@ def sweep(a):
     # Netgen 6.2 from Python ignores the meshing parameters of an OCC geometry
     # (its mesh is the same for every curvature safety and maxh tried), so it
     # gives one point per model.
-    # sizemesh: deviation bounds with phi_c = 30; the coarse ones also with phi_c = 90
+    # sizemesh: deviation bounds with phi_c = 30; down to 2.83e-4 also with phi_c = 90
     # (at a coarse deviation, 30 degrees per element across small fillets sets the floor).
     levels = {"sizemesh": [(1.28e-2, 90), (9.05e-3, 90), (6.4e-3, 90), (4.53e-3, 90), (3.2e-3, 90), (2.26e-3, 90),
-                           (1.6e-3, 90), (1.13e-3, 90), (8e-4, 90), 3.2e-3, 1.6e-3,
-                           8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+                           (1.6e-3, 90), (1.13e-3, 90), (8e-4, 90), (5.66e-4, 90), (4e-4, 90), (2.83e-4, 90),
+                           3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
