@@ -396,7 +396,7 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
     smooth_sweep(fm, fs);
   }
   swaps();
-  // Edges still too long after smoothing are split, and the split region smoothed.
+  // Edges still too long (or too far off the surface) after smoothing are split.
   int splits = 0;
   for (int round = 0; round < 3; ++round) {
     const int n = split_long_edges(fm, fs, deviation);

@@ -33,6 +33,18 @@ double local(const std::map<int, double>& m, int id, double fallback) {
   auto it = m.find(id);
   return it == m.end() ? fallback : it->second;
 }
+// Under a deviation bound delta, radii r <= delta are below its accuracy: the
+// whole arc lies within delta of its chord.
+bool below_accuracy(double k, const SizingParams& p) {
+  return p.deviation > 0 && std::abs(k) * p.deviation >= 1;
+}
+// phi_c's size; under a deviation bound delta at least 2 delta: a chord of
+// 2 delta lies within delta of any arc of radius delta or more (the smaller
+// radii set no size), so a finer angular resolution resolves nothing the bound
+// asks for.
+double angular_size(double k, double phi_deg, const SizingParams& p) {
+  return std::max(chord_size(k, phi_deg), 2 * p.deviation);
+}
 // Principal curvatures at uv; at a singular point (a pole, an apex) where they
 // are undefined, those just beside it, a small step toward the face's uv centre.
 bool face_curvatures(const Geometry& g, int face, const Vec2& uv, double& k1, double& k2) {
@@ -54,19 +66,6 @@ double triangle_deviation_curvature(double k1, double k2) {
   // the curvature of an arc whose chord h has that height.
   return std::max(std::abs(k1), std::abs(k1 + k2) * 2.0 / 3.0);
 }
-
-namespace {
-bool below_accuracy(double k, const SizingParams& p) {
-  return p.deviation > 0 && std::abs(k) * p.deviation >= 1;  // r <= delta
-}
-// phi_c's size; under a deviation bound delta at least 2 delta: a chord of
-// 2 delta lies within delta of any arc of radius delta or more (the smaller
-// radii set no size), so a finer angular resolution resolves nothing the bound
-// asks for.
-double angular_size(double k, double phi_deg, const SizingParams& p) {
-  return std::max(chord_size(k, phi_deg), 2 * p.deviation);
-}
-}  // namespace
 
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
   double k1, k2;
