@@ -41,9 +41,12 @@ bool below_accuracy(double k, const SizingParams& p) {
 // phi_c's size; under a deviation bound delta at least 2 delta: a chord of
 // 2 delta lies within delta of any arc of radius delta or more (the smaller
 // radii set no size), so a finer angular resolution resolves nothing the bound
-// asks for.
+// asks for. But never past the chord of a quarter circle: an element spanning
+// more of a small radius turns its corners' normals too far apart for a valid
+// triangle (on the F-16 at a bound of 1e-3 of the diagonal, elements across
+// small radii left an inverted triangle and two crossing pairs).
 double angular_size(double k, double phi_deg, const SizingParams& p) {
-  return std::max(chord_size(k, phi_deg), 2 * p.deviation);
+  return std::max(chord_size(k, phi_deg), std::min(2 * p.deviation, chord_size(k, 90.0)));
 }
 // Principal curvatures at uv; at a singular point (a pole, an apex) where they
 // are undefined, those just beside it, a small step toward the face's uv centre.

@@ -222,3 +222,27 @@ TEST_CASE("default sizes mesh the ONERA M6 in at most 60k triangles within 2e-4 
   INFO("largest centroid distance " << worst / diag << " of the diagonal");
   CHECK(worst <= 2e-4 * diag);
 }
+
+TEST_CASE("the aircraft under a coarse and a fine deviation bound: valid and closed, no crossing pair") {
+  // Under a bound d, small radii and phi_c's finest elements give way to
+  // elements of up to 2d; never so long that they span more than a quarter
+  // circle, or the F-16 at 1e-3 of its diagonal gets an inverted triangle and
+  // crossing pairs where elements cross small radii.
+  for (const char* file : {"f16_openvsp.stp", "manta2_openvsp.stp"}) {
+    const Model model = load_model(test::model_path(file));
+    const double diag = model.info().diagonal();
+    for (double rel : {1e-3, 1e-4}) {
+      INFO(file << " at --deviation " << rel << " of the diagonal");
+      const nlohmann::json j = run_and_report(test::model_path(file) + " --deviation " + std::to_string(rel * diag) +
+                                                  " -o " + scratch("dev.vtu"),
+                                              "dev");
+      const auto& m = j["mesh"];
+      INFO(m.dump());
+      CHECK(m["failed_faces"].empty());
+      CHECK(m["inverted_triangles"] == 0);
+      CHECK(m["self_intersecting_pairs"] == 0);
+      CHECK(m["boundary_edges"] == 0);
+      CHECK(m["nonmanifold_edges"] == 0);
+    }
+  }
+}
