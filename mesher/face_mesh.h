@@ -21,7 +21,8 @@ struct FaceMesh {
   std::vector<int> global;
   std::vector<char> pole;
   // Where a boundary node lies in the assembled mesh: the shared curve node's
-  // xyz, which may lie off S(uv) by the CAD's edge tolerance (S(uv) for the rest).
+  // xyz, which may lie off S(uv) by the CAD's edge tolerance. Read through
+  // position() only: an inner node's entry is a placeholder (it lies at s.p).
   std::vector<Vec3> shared_xyz;
   std::vector<std::vector<int>> loops;  // boundary, domain on the left; loops[0] outer
   std::vector<std::array<int, 3>> tris;

@@ -67,6 +67,14 @@ void repoint(std::vector<std::array<int, 3>>& nbr, int t, int from, int to) {
     if (nbr[t][k] == from) nbr[t][k] = to;
 }
 
+// Where triangle T2 holds edge a -> b of its neighbour reversed: the j with
+// T2[j] == b and T2[j + 1] == a (its third corner is T2[j + 2]); -1 if none.
+int reversed_edge(const std::array<int, 3>& T2, int a, int b) {
+  for (int j = 0; j < 3; ++j)
+    if (T2[j] == b && T2[(j + 1) % 3] == a) return j;
+  return -1;
+}
+
 // One sweep of diagonal swaps that raise the worse shape of the two triangles.
 int swap_sweep(FaceMesh& fm, const FaceSurface& fs, std::vector<std::array<int, 3>>& nbr) {
   int swaps = 0;
@@ -80,9 +88,8 @@ int swap_sweep(FaceMesh& fm, const FaceSurface& fs, std::vector<std::array<int, 
       if (t2 < 0 || fm.pole_triangle(fm.tris[t2])) continue;
       const auto T1 = fm.tris[t1], T2 = fm.tris[t2];
       const int a = T1[k], b = T1[(k + 1) % 3], c = T1[(k + 2) % 3];
-      int j = 0;
-      while (j < 3 && !(T2[j] == b && T2[(j + 1) % 3] == a)) ++j;
-      if (j == 3) continue;
+      const int j = reversed_edge(T2, a, b);
+      if (j < 0) continue;
       const int d = T2[(j + 2) % 3];
       if (d == c) continue;
       const std::array<int, 3> n1{c, a, d}, n2{d, b, c};
@@ -220,11 +227,11 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
 // square. Each edge gets a node at its uv midpoint and its two triangles
 // become four, kept only if all four are valid and none has an angle below
 // both 20 degrees and the smallest of the pair it replaces. Worst edges
-// first, each triangle split once per round.
+// first, each triangle split once per round. nbr: the triangles' neighbours
+// (neighbours()) on entry.
 constexpr double kSplitAbove = 1.4;
 constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin triangle
-int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation) {
-  const std::vector<std::array<int, 3>> nbr = neighbours(fm);
+int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation, const std::vector<std::array<int, 3>>& nbr) {
   // How far the point of the mesh at uv (xyz) lies off the surface there, in d.
   auto off = [&](const Vec2& uv, const Vec3& xyz) {
     try {
@@ -275,9 +282,8 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation) {
     if (t2 < 0 || touched[t1] || touched[t2]) continue;
     const auto T1 = fm.tris[t1], T2 = fm.tris[t2];
     const int a = T1[l.k], b = T1[(l.k + 1) % 3], c = T1[(l.k + 2) % 3];
-    int j = 0;
-    while (j < 3 && !(T2[j] == b && T2[(j + 1) % 3] == a)) ++j;
-    if (j == 3) continue;
+    const int j = reversed_edge(T2, a, b);
+    if (j < 0) continue;
     const int d = T2[(j + 2) % 3];
     const Vec2 uv = 0.5 * (fm.uv[a] + fm.uv[b]);
     SurfaceSample sm;
@@ -397,13 +403,7 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
   }
   swaps();
   // Edges still too long (or too far off the surface) after smoothing are split.
-  int splits = 0;
-  for (int round = 0; round < 3; ++round) {
-    const int n = split_long_edges(fm, fs, deviation);
-    splits += n;
-    if (n == 0) break;
-  }
-  if (splits > 0) nbr = neighbours(fm);
+  for (int round = 0; round < 3 && split_long_edges(fm, fs, deviation, nbr) > 0; ++round) nbr = neighbours(fm);
   if (rescue_thin_triangles(fm, fs) > 0) swaps();
 }
 
