@@ -84,6 +84,14 @@ BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions
 // a chord; each gets its own midpoint on its own surface).
 int split_edges(BackgroundMesh& bg, const Geometry& g, const std::vector<int>& edges);
 
+// Flips edges inside faces until every pair of triangles across one is
+// Delaunay in space (the angles opposite the edge sum to at most pi, within
+// a margin of about 17 degrees), where
+// the flip keeps both triangles counter-clockwise in the face's uv and does
+// not fold in space. Curve edges, faces with a pole and flips that would
+// repeat an existing edge are left alone. Returns the number of flips.
+int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g);
+
 // --- building blocks shared by the builders above ---
 // Fills patch.adj from patch.tris: neighbour across the edge opposite each corner.
 void build_adjacency(FacePatch& patch);
@@ -92,6 +100,8 @@ struct CurveEdge {
   std::array<int, 2> v;
   int curve;
 };
+// The curve edges of bg, to re-assemble it after its patches changed.
+std::vector<CurveEdge> curve_edges(const BackgroundMesh& bg);
 // Rebuilds tris, tri_face, global_tri, edges (the curves' first), tri_edges and
 // the vertex uses from the patches and the curves' edges.
 void assemble_background(BackgroundMesh& bg, const Geometry& g, const std::vector<CurveEdge>& curve_edges);

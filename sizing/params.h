@@ -38,6 +38,7 @@ struct SizingParams {
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   GapSide gap_side = GapSide::Auto;
   bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
+  bool delaunay_flips = true;     // with refine_background: flip edges to make the background Delaunay in space
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;

@@ -43,6 +43,12 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
                        RefineStats* stats) {
   RefineStats s;
   s.vertices_before = bg.num_vertices();
+  // Delaunay in space first: the tessellation's obtuse triangles would make
+  // Eq. 11 lower sizes across their short height (see flip_to_delaunay).
+  if (p.refine_background && p.delaunay_flips) {
+    s.flips = flip_to_delaunay(bg, g);
+    if (s.flips > 0) m = initial_sizes(g, bg, p, diagonal);
+  }
   for (int round = 0; round < kRefineMaxRounds && p.refine_background; ++round) {
     std::vector<double> h = m.h_initial;
     smooth_edges(bg, m.edge_log_beta, h);  // Eq. 12: what gradation leaves at the vertices
@@ -101,6 +107,7 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
     }
     const int n = split.empty() ? 0 : split_edges(bg, g, split);
     if (n == 0) break;
+    if (p.delaunay_flips) s.flips += flip_to_delaunay(bg, g);  // the split's new triangles too
     s.rounds = round + 1;
     s.edges_split += n;
     m = initial_sizes(g, bg, p, diagonal);

@@ -18,7 +18,8 @@
 // over; the deviation of an element grows with the square of its size, so a
 // smaller factor), recomputing the initial and
 // edge-graded sizes after each round, until no edge qualifies or kRefineMaxRounds
-// rounds have run.
+// rounds have run. Before the first round and after each one, edges inside
+// faces are flipped to make the background Delaunay in space.
 //
 // Inputs:  g geometry, bg background mesh (refined in place), p parameters, diagonal,
 //          and the initial size map on bg
@@ -35,6 +36,7 @@ namespace sizemesh {
 struct RefineStats {
   int rounds = 0;
   int edges_split = 0;
+  int flips = 0;  // Delaunay flips, before and after each round of splits
   int vertices_before = 0, vertices_after = 0;
 };
 

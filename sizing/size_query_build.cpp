@@ -186,7 +186,10 @@ SizeQuery::Face build_face(const FacePatch& patch, int id, const std::vector<dou
         if (f.tris[n].adj[j] == t) f.tris[t].back[k] = static_cast<int8_t>(j);
       if (f.tris[t].back[k] < 0) f.tris[t].adj[k] = -1;  // one-sided adjacency: treat as boundary
     }
-  f.step_limit = 64 + nt / 2;
+  // A straight walk crosses each triangle at most once; in a patch whose
+  // triangles are long and thin in uv (well shaped in space on a stretched
+  // parametrisation) it may cross most of them.
+  f.step_limit = 64 + nt;
   build_start_grid(f);
   build_boundary(f, patch);
   return f;

@@ -139,7 +139,8 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
     std::cout << "model: " << info.faces << " faces, " << info.curves << " curves; background mesh "
               << r->bg.num_triangles() << " triangles, " << r->bg.num_vertices() << " vertices ("
               << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
-              << " edges split in " << report.refinement.rounds << " rounds)\n";
+              << " edges split in " << report.refinement.rounds << " rounds, " << report.refinement.flips
+              << " edges flipped)\n";
     print_sizing_summary(r->bg, r->sizes, report.smoothing, std::cout);
     std::cout << "estimate: about " << static_cast<long long>(r->estimate.total + 0.5) << " triangles\n";
   }

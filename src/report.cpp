@@ -54,7 +54,8 @@ nlohmann::json report_json(const RunReport& r) {
                      {"vertices", r.background_vertices},
                      {"tessellation_vertices", r.refinement.vertices_before},
                      {"refinement_rounds", r.refinement.rounds},
-                     {"refinement_edges_split", r.refinement.edges_split}};
+                     {"refinement_edges_split", r.refinement.edges_split},
+                     {"refinement_flips", r.refinement.flips}};
   if (r.sizes) {
     std::vector<int> count(kNumLimits, 0);
     for (Limit l : r.sizes->limit) ++count[static_cast<int>(l)];
