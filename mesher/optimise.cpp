@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
 #include "geometry/predicates.h"
 #include "geometry/vertex_triangles.h"
@@ -390,6 +391,124 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
   return moved;
 }
 
+// Collapses of the short edge of thin triangles (smallest angle under 12
+// degrees): a needle whose short side joins an inner node to another node
+// (a sliver the front left between two close nodes) loses that inner node,
+// moved onto the other end. Kept only if every triangle of the removed
+// node's ball stays valid, the link condition holds (the two ends share no
+// neighbour but the corners opposite the edge, so no triangle is doubled),
+// and the smallest angle of the ball grows. One collapse per neighbourhood
+// per sweep; the removed nodes are dropped from fm afterwards.
+int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
+  constexpr double kThin = 12;
+  const Balls balls(fm);
+  const int nt = static_cast<int>(fm.tris.size());
+  std::vector<char> dead(nt, 0), locked(fm.num_nodes(), 0), removed(fm.num_nodes(), 0);
+  auto angle_of = [&](const std::array<int, 3>& t) {
+    return min_angle_deg(fm.position(t[0]), fm.position(t[1]), fm.position(t[2]));
+  };
+  auto neighbours_of = [&](int v) {
+    std::vector<int> n;
+    for (int e = balls.start[v]; e < balls.start[v + 1]; ++e)
+      for (int w : fm.tris[balls.tri_of[e]])
+        if (w != v) n.push_back(w);
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    return n;
+  };
+  int collapsed = 0;
+  for (int t = 0; t < nt; ++t) {
+    const auto tr = fm.tris[t];
+    if (dead[t] || fm.pole_triangle(tr) || !(angle_of(tr) < kThin)) continue;
+    int k = 0;  // shortest side (tr[k], tr[k + 1])
+    for (int j = 1; j < 3; ++j)
+      if ((fm.position(tr[j]) - fm.position(tr[(j + 1) % 3])).squaredNorm() <
+          (fm.position(tr[k]) - fm.position(tr[(k + 1) % 3])).squaredNorm())
+        k = j;
+    const int a = tr[k], b = tr[(k + 1) % 3];
+    if (locked[a] || locked[b]) continue;
+    // Try removing each inner end onto the other; keep the better result.
+    double best_angle = -1;
+    int best_r = -1;
+    for (const auto& [r, keep] : {std::pair{a, b}, std::pair{b, a}}) {
+      if (fm.boundary(r) || fm.pole[r]) continue;
+      // Link condition: common neighbours are exactly the corners opposite the edge.
+      const std::vector<int> nr = neighbours_of(r), nk = neighbours_of(keep);
+      std::vector<int> common;
+      std::set_intersection(nr.begin(), nr.end(), nk.begin(), nk.end(), std::back_inserter(common));
+      int opposite = 0;
+      double before = 180, after = 180;
+      bool valid = true;
+      for (int e = balls.start[r]; e < balls.start[r + 1] && valid; ++e) {
+        const auto& q = fm.tris[balls.tri_of[e]];
+        before = std::min(before, angle_of(q));
+        if (q[0] == keep || q[1] == keep || q[2] == keep) {
+          ++opposite;
+          continue;
+        }
+        std::array<int, 3> moved = q;
+        for (int& v : moved)
+          if (v == r) v = keep;
+        if (fm.pole_triangle(moved)) {
+          valid = orient(fm.uv[moved[0]], fm.uv[moved[1]], fm.uv[moved[2]]) > 0;
+          continue;
+        }
+        valid = shape(fm, fs, moved) >= 0;
+        after = std::min(after, angle_of(moved));
+      }
+      if (!valid || opposite != 2 || static_cast<int>(common.size()) != 2 || !(after > before)) continue;
+      if (after > best_angle) {
+        best_angle = after;
+        best_r = r;
+      }
+    }
+    if (best_r < 0) continue;
+    const int r = best_r, keep = best_r == a ? b : a;
+    for (int e = balls.start[r]; e < balls.start[r + 1]; ++e) {
+      const int q = balls.tri_of[e];
+      auto& Q = fm.tris[q];
+      if (Q[0] == keep || Q[1] == keep || Q[2] == keep) {
+        dead[q] = 1;
+        continue;
+      }
+      for (int& v : Q)
+        if (v == r) v = keep;
+    }
+    removed[r] = 1;
+    for (int v : neighbours_of(r)) locked[v] = 1;
+    for (int v : neighbours_of(keep)) locked[v] = 1;
+    locked[r] = locked[keep] = 1;
+    ++collapsed;
+  }
+  if (collapsed == 0) return 0;
+  // Drop the dead triangles and the removed nodes (renumbering the rest).
+  std::vector<int> id(fm.num_nodes(), -1);
+  int n = 0;
+  for (int i = 0; i < fm.num_nodes(); ++i) {
+    if (removed[i]) continue;
+    id[i] = n;
+    fm.uv[n] = fm.uv[i];
+    fm.s[n] = fm.s[i];
+    fm.global[n] = fm.global[i];
+    fm.pole[n] = fm.pole[i];
+    fm.shared_xyz[n] = fm.shared_xyz[i];
+    ++n;
+  }
+  fm.uv.resize(n);
+  fm.s.resize(n);
+  fm.global.resize(n);
+  fm.pole.resize(n);
+  fm.shared_xyz.resize(n);
+  for (auto& loop : fm.loops)
+    for (int& v : loop) v = id[v];
+  std::vector<std::array<int, 3>> tris;
+  tris.reserve(fm.tris.size());
+  for (int t = 0; t < nt; ++t)
+    if (!dead[t]) tris.push_back({id[fm.tris[t][0]], id[fm.tris[t][1]], id[fm.tris[t][2]]});
+  fm.tris = std::move(tris);
+  return collapsed;
+}
+
 void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
   if (passes <= 0 || fm.tris.empty()) return;
   std::vector<std::array<int, 3>> nbr = neighbours(fm);
@@ -405,6 +524,11 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
   // Edges still too long (or too far off the surface) after smoothing are split.
   for (int round = 0; round < 3 && split_long_edges(fm, fs, deviation, nbr) > 0; ++round) nbr = neighbours(fm);
   if (rescue_thin_triangles(fm, fs) > 0) swaps();
+  if (collapse_thin_triangles(fm, fs) > 0) {
+    nbr = neighbours(fm);
+    swaps();
+    smooth_sweep(fm, fs);
+  }
 }
 
 }  // namespace sizemesh

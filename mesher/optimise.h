@@ -4,7 +4,8 @@
 // map or, with deviation > 0, too far off the surface, and a last search for
 // nodes next to thin triangles. Validity is kept throughout: triangles stay
 // counter-clockwise in uv and facing the surface normal in space; boundary
-// nodes and edges are fixed.
+// nodes and edges are fixed; last, inner nodes too close to a neighbour are
+// merged into it (collapse_thin_triangles).
 //
 // Input/output: fm (triangles and inner node positions change), fs its sampler.
 #pragma once
@@ -26,5 +27,14 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation = 0);
 // counter-clockwise in uv and not turned against the surface at its centroid.
 // Returns the nodes moved.
 int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs);
+
+// Triangles under 12 degrees whose shortest side ends at an inner node (two
+// nodes the front left too close): that node is moved onto the side's other
+// end and its two triangles on the side disappear, where every triangle
+// around it stays valid, the two ends share no neighbour but the corners
+// opposite the side (no triangle doubled) and the smallest angle around it
+// grows. The removed nodes are dropped from fm (the others renumbered, loops
+// too). Returns the nodes removed.
+int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs);
 
 }  // namespace sizemesh

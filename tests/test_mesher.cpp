@@ -701,6 +701,45 @@ TEST_CASE("a node left far off a short boundary edge is moved until no thin tria
   CHECK(rescue_thin_triangles(fm, fs) == 0);  // nothing under 15 degrees is left to move
 }
 
+TEST_CASE("two inner nodes left too close together are merged, and the two slivers between them go", "[mesher]") {
+  // A 10 x 10 square fanned around two inner nodes 0.2 apart at its centre:
+  // the triangles on the short side between them are under 3 degrees. Once
+  // merged, the four triangles left are right-angled isosceles, give or take.
+  const DistortedRectangle square(10.0, 10.0);
+  const UniformSize h(5.0);
+  FaceSurface fs(square, h, 1);
+  FaceMesh fm;
+  fm.face = 1;
+  const Vec3 at[] = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 0}, {5.2, 5, 0}};  // in space
+  std::vector<Vec2> uv;
+  for (int k = 0; k < 6; ++k) {
+    Vec2 suv(0.5, 0.5);
+    REQUIRE(square.project_to_face(1, at[k], suv));
+    uv.push_back(fs.to_mesher(suv));
+    fm.add_node(uv[k], fs.eval(uv[k]), k < 4 ? k : -1);
+  }
+  fm.loops = {{0, 1, 2, 3}};
+  fm.tris = {{0, 1, 5}, {1, 2, 5}, {2, 3, 4}, {3, 0, 4}, {0, 5, 4}, {2, 4, 5}};
+  auto smallest = [&] {
+    double a = 180;
+    for (const auto& t : fm.tris) a = std::min(a, min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p));
+    return a;
+  };
+  for (const auto& t : fm.tris) REQUIRE(orient(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]]) > 0);
+  REQUIRE(smallest() < 3);
+  CHECK(collapse_thin_triangles(fm, fs) == 1);
+  CHECK(fm.num_nodes() == 5);
+  CHECK(fm.tris.size() == 4);
+  CHECK(smallest() > 40);
+  for (int k = 0; k < 4; ++k) CHECK(fm.uv[k] == uv[k]);  // the boundary stays, numbered as before
+  CHECK(fm.loops == std::vector<std::vector<int>>{{0, 1, 2, 3}});
+  for (const auto& t : fm.tris) {
+    CHECK(orient(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]]) > 0);
+    for (int v : t) CHECK((v >= 0 && v < fm.num_nodes()));
+  }
+  CHECK(collapse_thin_triangles(fm, fs) == 0);
+}
+
 TEST_CASE("with a deviation bound the mesh stays that close to doubly curved, saddle and singly curved surfaces", "[mesher]") {
   // A sphere, a torus (convex outside, saddle-shaped inside) and a cylinder,
   // meshed from the curvature alone with a deviation bound d. The furthest
