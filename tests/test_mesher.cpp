@@ -670,6 +670,27 @@ TEST_CASE("a parametrisation whose speed varies strongly is stretched towards ar
   }
 }
 
+namespace {
+
+// A hand-made mesh of face 1 on fs: nodes at the surface's uv, the first
+// `boundary` of them on the boundary (their global ids 0, 1, ...) in one
+// loop, the rest inside; and the given triangles.
+FaceMesh hand_mesh(FaceSurface& fs, const std::vector<Vec2>& surface_uv, int boundary,
+                   std::vector<std::array<int, 3>> tris) {
+  FaceMesh fm;
+  fm.face = 1;
+  fm.loops.emplace_back();
+  for (int k = 0; k < static_cast<int>(surface_uv.size()); ++k) {
+    const Vec2 uv = fs.to_mesher(surface_uv[k]);
+    fm.add_node(uv, fs.eval(uv), k < boundary ? k : -1);
+    if (k < boundary) fm.loops[0].push_back(k);
+  }
+  fm.tris = std::move(tris);
+  return fm;
+}
+
+}  // namespace
+
 TEST_CASE("a node left far off a short boundary edge is moved until no thin triangle is left", "[mesher]") {
   // A 10 x 10 square with a boundary node halfway along its bottom side and
   // one inner node near the bottom right corner, fanned to the boundary:
@@ -677,16 +698,9 @@ TEST_CASE("a node left far off a short boundary edge is moved until no thin tria
   const DistortedRectangle square(10.0, 10.0);
   const UniformSize h(5.0);
   FaceSurface fs(square, h, 1);
-  FaceMesh fm;
-  fm.face = 1;
-  const Vec2 at[] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}, {0.95, 0.08}};  // the surface's uv
-  std::vector<Vec2> uv;
-  for (int k = 0; k < 6; ++k) {
-    uv.push_back(fs.to_mesher(at[k]));
-    fm.add_node(uv[k], fs.eval(uv[k]), k < 5 ? k : -1);
-  }
-  fm.loops = {{0, 1, 2, 3, 4}};
-  fm.tris = {{0, 1, 5}, {1, 2, 5}, {2, 3, 5}, {3, 4, 5}, {4, 0, 5}};
+  FaceMesh fm = hand_mesh(fs, {{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}, {0.95, 0.08}}, 5,
+                          {{0, 1, 5}, {1, 2, 5}, {2, 3, 5}, {3, 4, 5}, {4, 0, 5}});
+  const std::vector<Vec2> uv = fm.uv;
   auto thin = [&] {
     int n = 0;
     for (const auto& t : fm.tris) n += min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p) < 12;
@@ -708,18 +722,13 @@ TEST_CASE("two inner nodes left too close together are merged, and the two slive
   const DistortedRectangle square(10.0, 10.0);
   const UniformSize h(5.0);
   FaceSurface fs(square, h, 1);
-  FaceMesh fm;
-  fm.face = 1;
-  const Vec3 at[] = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 0}, {5.2, 5, 0}};  // in space
-  std::vector<Vec2> uv;
-  for (int k = 0; k < 6; ++k) {
-    Vec2 suv(0.5, 0.5);
-    REQUIRE(square.project_to_face(1, at[k], suv));
-    uv.push_back(fs.to_mesher(suv));
-    fm.add_node(uv[k], fs.eval(uv[k]), k < 4 ? k : -1);
+  std::vector<Vec2> at;  // the surface's uv of the corners and the two inner nodes
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(10, 10, 0), Vec3(0, 10, 0), Vec3(5, 5, 0), Vec3(5.2, 5, 0)}) {
+    at.emplace_back(0.5, 0.5);
+    REQUIRE(square.project_to_face(1, p, at.back()));
   }
-  fm.loops = {{0, 1, 2, 3}};
-  fm.tris = {{0, 1, 5}, {1, 2, 5}, {2, 3, 4}, {3, 0, 4}, {0, 5, 4}, {2, 4, 5}};
+  FaceMesh fm = hand_mesh(fs, at, 4, {{0, 1, 5}, {1, 2, 5}, {2, 3, 4}, {3, 0, 4}, {0, 5, 4}, {2, 4, 5}});
+  const std::vector<Vec2> uv = fm.uv;
   auto smallest = [&] {
     double a = 180;
     for (const auto& t : fm.tris) a = std::min(a, min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p));
