@@ -4,7 +4,7 @@
 // obtuse triangles make the linear size map steep across their short height
 // (Eq. 11), which lowers sizes far from any feature.
 #include <cmath>
-#include <unordered_set>
+#include <unordered_map>
 
 #include "geometry/background_mesh.h"
 #include "geometry/geometry.h"
@@ -39,12 +39,12 @@ std::vector<CurveEdge> curve_edges(const BackgroundMesh& bg) {
 int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
   // Every edge the mesh has, across all faces: a flip must not create an
   // edge that exists already (two vertices of a curve, or of another face).
-  std::unordered_set<uint64_t> existing;
-  existing.reserve(bg.edges.size() * 2);
-  for (const auto& e : bg.edges) existing.insert(edge_key(e[0], e[1]));
-  std::unordered_set<uint64_t> on_curve;
-  for (size_t e = 0; e < bg.edges.size(); ++e)
-    if (bg.edge_curve[e]) on_curve.insert(edge_key(bg.edges[e][0], bg.edges[e][1]));
+  // Edges a flip makes are inside a face (id -1 here).
+  std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
+  auto on_curve = [&](uint64_t key) {
+    const auto it = edge_of.find(key);
+    return it != edge_of.end() && it->second >= 0 && bg.edge_curve[it->second] != 0;
+  };
 
   int flips = 0;
   for (FacePatch& patch : bg.patches) {
@@ -69,7 +69,7 @@ int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
             if (patch.tris[s][j] != a && patch.tris[s][j] != b) d = patch.tris[s][j];
           if (d < 0) continue;
           const int ga = patch.vertex[a], gb = patch.vertex[b], gc = patch.vertex[c], gd = patch.vertex[d];
-          if (gc == gd || on_curve.count(edge_key(ga, gb)) || existing.count(edge_key(gc, gd))) continue;
+          if (gc == gd || on_curve(edge_key(ga, gb)) || edge_of.count(edge_key(gc, gd))) continue;
           // Not Delaunay in space: the angles opposite (a, b) sum to more than pi.
           if (!(angle_at(X(c), X(a), X(b)) + angle_at(X(d), X(b), X(a)) > kPi + kFlipMargin)) continue;
           // The new pair must stay counter-clockwise in uv, with margin.
@@ -82,8 +82,8 @@ int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
           if (!(n1.dot(before) > 0 && n2.dot(before) > 0)) continue;
           patch.tris[t] = {c, a, d};
           patch.tris[s] = {c, d, b};
-          existing.erase(edge_key(ga, gb));
-          existing.insert(edge_key(gc, gd));
+          edge_of.erase(edge_key(ga, gb));
+          edge_of.emplace(edge_key(gc, gd), -1);
           done[t] = done[s] = 1;
           ++n;
         }

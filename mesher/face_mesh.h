@@ -36,6 +36,31 @@ struct FaceMesh {
     return static_cast<int>(uv.size()) - 1;
   }
   int num_nodes() const { return static_cast<int>(uv.size()); }
+  // Removes the nodes marked in `removed` (used by no triangle) and renumbers
+  // the others, in the triangles and loops too, keeping their order.
+  void drop_nodes(const std::vector<char>& removed) {
+    std::vector<int> id(uv.size(), -1);
+    int n = 0;
+    for (int i = 0; i < num_nodes(); ++i) {
+      if (removed[i]) continue;
+      id[i] = n;
+      uv[n] = uv[i];
+      s[n] = s[i];
+      global[n] = global[i];
+      pole[n] = pole[i];
+      shared_xyz[n] = shared_xyz[i];
+      ++n;
+    }
+    uv.resize(n);
+    s.resize(n);
+    global.resize(n);
+    pole.resize(n);
+    shared_xyz.resize(n);
+    for (auto& loop : loops)
+      for (int& v : loop) v = id[v];
+    for (auto& t : tris)
+      for (int& v : t) v = id[v];
+  }
   bool boundary(int i) const { return global[i] >= 0; }
   // Node i's position in the assembled mesh.
   const Vec3& position(int i) const { return global[i] >= 0 ? shared_xyz[i] : s[i].p; }

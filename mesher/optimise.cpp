@@ -219,6 +219,12 @@ int smooth_sweep(FaceMesh& fm, const FaceSurface& fs) {
   return moved;
 }
 
+// Smallest angle of triangle t where its nodes lie in the assembled mesh
+// (boundary nodes at their curve's xyz), in degrees.
+double final_min_angle(const FaceMesh& fm, const std::array<int, 3>& t) {
+  return min_angle_deg(fm.position(t[0]), fm.position(t[1]), fm.position(t[2]));
+}
+
 // One round of splits of edges inside the face that are too long: longer
 // than kSplitAbove times the size wanted along them (the geometric mean of
 // their ends' sizes), or, under a deviation bound d > 0, with their middle or
@@ -293,11 +299,7 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation, const std:
     } catch (const EvaluationError&) {
       continue;
     }
-    // Angles where the nodes lie in the assembled mesh (boundary nodes at their curve's xyz).
-    auto angle = [&](const std::array<int, 3>& t) {
-      return min_angle_deg(fm.position(t[0]), fm.position(t[1]), fm.position(t[2]));
-    };
-    const double angle_old = std::min(angle(T1), angle(T2));
+    const double angle_old = std::min(final_min_angle(fm, T1), final_min_angle(fm, T2));
     const std::array<Vec2, 4> u{fm.uv[a], fm.uv[b], fm.uv[c], fm.uv[d]};
     const std::array<const SurfaceSample*, 4> p{&fm.s[a], &fm.s[b], &fm.s[c], &fm.s[d]};
     const std::array<const Vec3*, 4> x{&fm.position(a), &fm.position(b), &fm.position(c), &fm.position(d)};
@@ -397,16 +399,13 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
 // moved onto the other end. Kept only if every triangle of the removed
 // node's ball stays valid, the link condition holds (the two ends share no
 // neighbour but the corners opposite the edge, so no triangle is doubled),
-// and the smallest angle of the ball grows. One collapse per neighbourhood
-// per sweep; the removed nodes are dropped from fm afterwards.
+// and the smallest angle of the ball grows. One collapse per neighbourhood;
+// the removed nodes are dropped from fm afterwards.
 int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
   constexpr double kThin = 12;
   const Balls balls(fm);
   const int nt = static_cast<int>(fm.tris.size());
   std::vector<char> dead(nt, 0), locked(fm.num_nodes(), 0), removed(fm.num_nodes(), 0);
-  auto angle_of = [&](const std::array<int, 3>& t) {
-    return min_angle_deg(fm.position(t[0]), fm.position(t[1]), fm.position(t[2]));
-  };
   auto neighbours_of = [&](int v) {
     std::vector<int> n;
     for (int e = balls.start[v]; e < balls.start[v + 1]; ++e)
@@ -419,7 +418,7 @@ int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
   int collapsed = 0;
   for (int t = 0; t < nt; ++t) {
     const auto tr = fm.tris[t];
-    if (dead[t] || fm.pole_triangle(tr) || !(angle_of(tr) < kThin)) continue;
+    if (dead[t] || fm.pole_triangle(tr) || !(final_min_angle(fm, tr) < kThin)) continue;
     int k = 0;  // shortest side (tr[k], tr[k + 1])
     for (int j = 1; j < 3; ++j)
       if ((fm.position(tr[j]) - fm.position(tr[(j + 1) % 3])).squaredNorm() <
@@ -441,7 +440,7 @@ int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
       bool valid = true;
       for (int e = balls.start[r]; e < balls.start[r + 1] && valid; ++e) {
         const auto& q = fm.tris[balls.tri_of[e]];
-        before = std::min(before, angle_of(q));
+        before = std::min(before, final_min_angle(fm, q));
         if (q[0] == keep || q[1] == keep || q[2] == keep) {
           ++opposite;
           continue;
@@ -454,7 +453,7 @@ int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
           continue;
         }
         valid = shape(fm, fs, moved) >= 0;
-        after = std::min(after, angle_of(moved));
+        after = std::min(after, final_min_angle(fm, moved));
       }
       if (!valid || opposite != 2 || static_cast<int>(common.size()) != 2 || !(after > before)) continue;
       if (after > best_angle) {
@@ -481,31 +480,12 @@ int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
     ++collapsed;
   }
   if (collapsed == 0) return 0;
-  // Drop the dead triangles and the removed nodes (renumbering the rest).
-  std::vector<int> id(fm.num_nodes(), -1);
-  int n = 0;
-  for (int i = 0; i < fm.num_nodes(); ++i) {
-    if (removed[i]) continue;
-    id[i] = n;
-    fm.uv[n] = fm.uv[i];
-    fm.s[n] = fm.s[i];
-    fm.global[n] = fm.global[i];
-    fm.pole[n] = fm.pole[i];
-    fm.shared_xyz[n] = fm.shared_xyz[i];
-    ++n;
-  }
-  fm.uv.resize(n);
-  fm.s.resize(n);
-  fm.global.resize(n);
-  fm.pole.resize(n);
-  fm.shared_xyz.resize(n);
-  for (auto& loop : fm.loops)
-    for (int& v : loop) v = id[v];
   std::vector<std::array<int, 3>> tris;
   tris.reserve(fm.tris.size());
   for (int t = 0; t < nt; ++t)
-    if (!dead[t]) tris.push_back({id[fm.tris[t][0]], id[fm.tris[t][1]], id[fm.tris[t][2]]});
+    if (!dead[t]) tris.push_back(fm.tris[t]);
   fm.tris = std::move(tris);
+  fm.drop_nodes(removed);
   return collapsed;
 }
 
