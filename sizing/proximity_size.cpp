@@ -29,12 +29,14 @@ double face_mu(const SizingParams& p, int face) {
 // surface; one row of triangles spans the face, each twice as long as the face
 // is wide (about right-angled and isosceles, its smallest angle near 45
 // degrees), so the size the face hands on to its neighbours, and the
-// gradation spreads, is 2 w rather than w. Elsewhere (and without a bound, or
-// where the curvature cannot be evaluated) mu_d, the paper's count.
+// gradation spreads, is 2 w rather than w. A mu_d under one half asks for
+// even fewer and is kept, so sizes never shrink as mu_d falls. Elsewhere (and
+// without a bound, or where the curvature cannot be evaluated) mu_d, the
+// paper's count.
 double elements_across(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, int face, int v,
                        double w) {
   const double mu = face_mu(p, face);
-  if (!(p.deviation > 0) || !(mu > 1)) return mu;
+  if (!(p.deviation > 0) || !(mu > 0.5)) return mu;
   for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u)
     if (bg.use_face[u] == face)  // NaN (curvature unknown) compares false: mu_d
       return face_deviation_size(g, face, bg.patches[face - 1].uv[bg.use_local[u]], p.deviation) >= w ? 0.5 : mu;

@@ -226,6 +226,14 @@ TEST_CASE("with a deviation bound, faces narrower and curves shorter than twice 
     } else if (delta < 0.5) {
       CHECK(smallest(face) == Approx(2.0));
       CHECK(smallest(curve) == Approx(1.0));
+      // Fewer elements across never means smaller sizes: one row for any
+      // mu_d down to one half, mu_d itself below.
+      for (double mu : {1.0, 0.75, 0.25}) {
+        SizingParams q = p;
+        q.mu_d = mu;
+        INFO("mu_d " << mu);
+        CHECK(smallest(face_proximity_sizes(m, bg, q)) == Approx(1.0 / std::min(mu, 0.5)));
+      }
     } else {
       CHECK(smallest(face) == Approx(200.0));  // the big faces' own width still counts (twice: flat)
       CHECK(smallest(curve) == Approx(100.0));
