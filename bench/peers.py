@@ -4,8 +4,9 @@
 For each model and each accuracy level (phi_c), runs every tool in its own
 process (Gmsh and Netgen both link OpenCASCADE and must not share one), then
 measures every mesh the same way with bench/mesh_metrics: triangles, share of
-min angles below 12 and 24 degrees, distance of triangle centroids to the CAD
-surface relative to the bounding-box diagonal. Prints a Markdown table and
+min angles below 12 and 24 degrees, distance of triangle centroids and edge
+midpoints to the CAD surface relative to the bounding-box diagonal (max and
+mean). Prints a Markdown table and
 ratios against Gmsh. Never fails on numbers.
 
     /usr/bin/python3 bench/peers.py [--build build] [--models DIR] [--phi 10 5] [--timeout 300] [--only NAME...]
@@ -15,10 +16,10 @@ ratios against Gmsh. Never fails on numbers.
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
 with phi_c = 30, and with 90 at the bounds down to 2.83e-4; Netgen 6.2 ignores its meshing parameters on OCC geometry
 from Python, so it gives one point), and for every sizemesh mesh the triangles a
-peer needs for the same maximum centroid distance are interpolated (log-log)
+peer needs for the same maximum distance are interpolated (log-log)
 between that peer's two bracketing meshes. The curves are also written as
-sweep.csv and plotted as sweep.png (triangles against maximum distance, one
-panel per model; needs python3-matplotlib). A ratio below 1 means sizemesh
+sweep.csv and plotted as sweep.png (triangles against maximum and against mean
+distance, one column per model; needs python3-matplotlib). A ratio below 1 means sizemesh
 needs fewer triangles for the same surface accuracy; "<0.2" means the peer's
 finest run is still less accurate, with 5 times sizemesh's triangles. sizemesh runs twice:
 with its default proximity sizing, and as "sizemesh-fidelity": proximity off and a
@@ -176,12 +177,12 @@ def sweep(a):
                 if m is None:
                     print("| %s | %s | %s | %s | - | - | - | - |" % (name, tool, tag, err or "no mesh"))
                     continue
-                curves.setdefault((name, tool), []).append((m["max_centroid_distance_rel"], m["triangles"]))
-                rows.append((name, tool, tag, m["triangles"], m["max_centroid_distance_rel"],
-                             m["mean_centroid_distance_rel"], m["share_below_12"], wall))
+                curves.setdefault((name, tool), []).append((m["max_distance_rel"], m["triangles"]))
+                rows.append((name, tool, tag, m["triangles"], m["max_distance_rel"], m["mean_distance_rel"],
+                             m["share_below_12"], wall))
                 print("| %s | %s | %s | %.2f | %d | %.3f%% | %.3f%% | %.2e |" % (
                     name, tool, tag, wall, m["triangles"], 100 * m["share_below_12"], 100 * m["share_below_24"],
-                    m["max_centroid_distance_rel"]))
+                    m["max_distance_rel"]))
                 sys.stdout.flush()
     print("\nTriangles at the same maximum distance, sizemesh / peer (interpolated on the peer's curve;"
           " only runs that no other run of the same tool beats on both counts):\n")
@@ -202,7 +203,7 @@ def sweep(a):
     out = a.out or tmp
     os.makedirs(out, exist_ok=True)
     write_sweep_csv(os.path.join(out, "sweep.csv"), rows)
-    plot_sweep(os.path.join(out, "sweep.png"), curves)
+    plot_sweep(os.path.join(out, "sweep.png"), rows)
     print("\nmeshes and curves.json in", tmp, "; sweep.csv and sweep.png in", out)
 
 
@@ -260,8 +261,9 @@ def write_sweep_csv(path, rows):
             f.write("%s,%s,%s,%d,%.6e,%.6e,%.6f,%.3f\n" % r)
 
 
-def plot_sweep(path, curves):
-    """Triangles against maximum distance (log-log), one panel per model, one curve per tool."""
+def plot_sweep(path, rows):
+    """Triangles against maximum (top) and mean (bottom) distance, log-log, one column per
+    model, one curve per tool: each tool's runs that no other of its runs beats on both counts."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -269,21 +271,22 @@ def plot_sweep(path, curves):
     except ImportError:
         print("no plot: python3-matplotlib is not installed")
         return
-    models = sorted({name for name, _ in curves})
+    models = sorted({r[0] for r in rows})
     if not models:
         return
-    fig, axes = plt.subplots(1, len(models), figsize=(5 * len(models), 4.5), squeeze=False)
-    for ax, name in zip(axes[0], models):
-        for (m, tool), pts in sorted(curves.items()):
-            if m != name or not pts:
-                continue
-            pts = sorted(p for p in pts if p[0] > 0)
-            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool, markersize=4)
-        ax.set_title(name)
-        ax.set_xlabel("max distance of centroids from the CAD / diagonal")
-        ax.set_ylabel("triangles")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+    fig, axes = plt.subplots(2, len(models), figsize=(5 * len(models), 9), squeeze=False)
+    for col, name in enumerate(models):
+        tools = sorted({r[1] for r in rows if r[0] == name})
+        for row, (column, label) in enumerate([(4, "maximum"), (5, "mean")]):
+            ax = axes[row][col]
+            for tool in tools:
+                pts = pareto([(r[column], r[3]) for r in rows if r[0] == name and r[1] == tool and r[column] > 0])
+                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool, markersize=4)
+            ax.set_title(name)
+            ax.set_xlabel("%s distance of centroids and edge midpoints from the CAD / diagonal" % label, fontsize=8)
+            ax.set_ylabel("triangles")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -325,7 +328,7 @@ def main():
                 else:
                     print("| %s | %g | %s | %.2f | %d | %.0f | %.3f%% | %.3f%% | %.2e | %.2e |" % (
                         name, phi, tool, wall, m["triangles"], m["triangles"] / wall, 100 * m["share_below_12"],
-                        100 * m["share_below_24"], m["max_centroid_distance_rel"], m["mean_centroid_distance_rel"]))
+                        100 * m["share_below_24"], m["max_distance_rel"], m["mean_distance_rel"]))
                 sys.stdout.flush()
     # Ratios against Gmsh at the same model and phi_c.
     print("\n| model | phi_c | throughput sizemesh/gmsh | triangles sizemesh/gmsh | triangles sizemesh/netgen |")
