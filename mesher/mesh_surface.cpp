@@ -91,7 +91,11 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
     if (!fr.ok) {
       r.reason = fr.reason;
     } else {
-      optimise(r.mesh, fs, o.optimise_passes, o.deviation);
+      SplitBounds bounds;
+      bounds.deviation = o.deviation;
+      bounds.max_turn = face < static_cast<int>(o.max_turn.size()) ? o.max_turn[face] : 0.0;
+      bounds.h_floor = o.h_min;
+      optimise(r.mesh, fs, o.optimise_passes, bounds);
       r.seconds_optimise = clock.lap();
       for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
       r.ok = true;

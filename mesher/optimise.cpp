@@ -229,26 +229,40 @@ double final_min_angle(const FaceMesh& fm, const std::array<int, 3>& t) {
 // than kSplitAbove times the size wanted along them (the geometric mean of
 // their ends' sizes), or, under a deviation bound d > 0, with their middle or
 // (for the longest edge of a triangle) the triangle's centre further than d
-// from the surface at the same uv. Where the front closed on a far node the
-// surface lies furthest from the mesh: a chord's height grows with its
-// square. Each edge gets a node at its uv midpoint and its two triangles
-// become four, kept only if all four are valid and none has an angle below
-// both 20 degrees and the smallest of the pair it replaces. Worst edges
-// first, each triangle split once per round. nbr: the triangles' neighbours
-// (neighbours()) on entry.
+// from the surface at the same uv, or, with max_turn > 0, over kTurnSplitAbove
+// sizes long and turning along the surface by more than kTurnSlack max_turn
+// (a chord of length l whose middle lies s off the surface turns by about
+// 8 s / l). Where the front closed on a far node the surface lies furthest
+// from the mesh: a chord's height grows with its square. Each edge gets a
+// node at its uv midpoint and its two triangles become four, kept only if all
+// four are valid and none has an angle below both 20 degrees and the smallest
+// of the pair it replaces. Worst edges first, each triangle split once per
+// round. nbr: the triangles' neighbours (neighbours()) on entry.
 constexpr double kSplitAbove = 1.4;
 constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin triangle
-int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation, const std::vector<std::array<int, 3>>& nbr) {
-  // How far the point of the mesh at uv (xyz) lies off the surface there, in d.
-  auto off = [&](const Vec2& uv, const Vec3& xyz) {
+// An edge up to 1.4 curvature sizes long turns by 1.4 phi_c and cuts twice as
+// deep as phi_c allows (height ~ length^2); 1.25 keeps it within 1.6 times.
+// Edges under 1.1 sizes are left alone, and so are those a split
+// would cut under h_min: there a small radius turns every edge by more than
+// phi_c, and h_min is the user's word on how small to go.
+constexpr double kTurnSlack = 1.25;
+constexpr double kTurnSplitAbove = 1.1;
+int split_long_edges(FaceMesh& fm, FaceSurface& fs, const SplitBounds& bounds,
+                     const std::vector<std::array<int, 3>>& nbr) {
+  const double deviation = bounds.deviation, max_turn = bounds.max_turn;
+  // How far the point of the mesh at uv (xyz) lies off the surface there:
+  // in all, and along the surface's normal alone (a chord's height, without
+  // the drift along the surface of a parametrisation that is not uniform).
+  auto off = [&](const Vec2& uv, const Vec3& xyz, bool normal = false) {
     try {
-      return (fs.eval_shape(uv).p - xyz).norm() / deviation;
+      const SurfaceSample s = fs.eval_shape(uv);
+      return normal ? std::abs((s.p - xyz).dot(s.n)) : (s.p - xyz).norm();
     } catch (const EvaluationError&) {
       return 0.0;
     }
   };
   struct Long {
-    double excess;  // over 1: by length (in kSplitAbove sizes) or off the surface (in d)
+    double excess;  // over 1: by length (in kSplitAbove sizes), off the surface (in d) or turning
     int t, k;
   };
   std::vector<Long> longs;
@@ -269,13 +283,17 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, double deviation, const std:
       if (t2 < t) continue;  // each edge once
       const double h = std::sqrt(fm.s[a].h * fm.s[b].h);
       double excess = h > 0 ? len / (kSplitAbove * h) : 0;
-      if (deviation > 0)
-        excess = std::max(excess, off(0.5 * (fm.uv[a] + fm.uv[b]), 0.5 * (fm.position(a) + fm.position(b))));
+      const bool turn = max_turn > 0 && h > 0 && len > kTurnSplitAbove * h && len >= 2 * bounds.h_floor;
+      const Vec2 uv_mid = 0.5 * (fm.uv[a] + fm.uv[b]);
+      const Vec3 mid = 0.5 * (fm.position(a) + fm.position(b));
+      if (deviation > 0) excess = std::max(excess, off(uv_mid, mid) / deviation);
+      if (turn) excess = std::max(excess, 8 * off(uv_mid, mid, true) / len / (kTurnSlack * max_turn));
       if (excess > 1) longs.push_back({excess, t, k});
     }
     if (deviation > 0 && longest >= 0) {
       const double centre = off((fm.uv[tr[0]] + fm.uv[tr[1]] + fm.uv[tr[2]]) / 3.0,
-                                (fm.position(tr[0]) + fm.position(tr[1]) + fm.position(tr[2])) / 3.0);
+                                (fm.position(tr[0]) + fm.position(tr[1]) + fm.position(tr[2])) / 3.0) /
+                            deviation;
       if (centre > 1) longs.push_back({centre, t, longest});
     }
   }
@@ -489,7 +507,7 @@ int collapse_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
   return collapsed;
 }
 
-void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
+void optimise(FaceMesh& fm, FaceSurface& fs, int passes, const SplitBounds& bounds) {
   if (passes <= 0 || fm.tris.empty()) return;
   std::vector<std::array<int, 3>> nbr = neighbours(fm);
   auto swaps = [&] {
@@ -502,7 +520,7 @@ void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation) {
   }
   swaps();
   // Edges still too long (or too far off the surface) after smoothing are split.
-  for (int round = 0; round < 3 && split_long_edges(fm, fs, deviation, nbr) > 0; ++round) nbr = neighbours(fm);
+  for (int round = 0; round < 3 && split_long_edges(fm, fs, bounds, nbr) > 0; ++round) nbr = neighbours(fm);
   if (rescue_thin_triangles(fm, fs) > 0) swaps();
   if (collapse_thin_triangles(fm, fs) > 0) {
     nbr = neighbours(fm);

@@ -1,7 +1,8 @@
 // Mesh improvement of one face after the front closes: edge swaps judged by
 // shape in space, smoothing of the nodes inside the face (moved in uv,
 // evaluated on the surface), splits of the edges left too long for the size
-// map or, with deviation > 0, too far off the surface, and a last search for
+// map or too far off the surface or turning too much along it (SplitBounds),
+// and a last search for
 // nodes next to thin triangles. Validity is kept throughout: triangles stay
 // counter-clockwise in uv and facing the surface normal in space; boundary
 // nodes and edges are fixed; last, inner nodes too close to a neighbour are
@@ -14,7 +15,18 @@
 
 namespace sizemesh {
 
-void optimise(FaceMesh& fm, FaceSurface& fs, int passes, double deviation = 0);
+// What makes an inner edge too long besides 1.4 sizes (0: no bound).
+struct SplitBounds {
+  double deviation = 0;  // its middle further than this off the surface
+  // The angle (radians) it may turn along the surface, phi_c: over 1.1 sizes
+  // long and turning by more than 1.25 max_turn.
+  double max_turn = 0;
+  // The size map's floor (h_min): no split for turning leaves an edge under
+  // it (a radius under h_min / phi_c turns every edge by more than phi_c).
+  double h_floor = 0;
+};
+
+void optimise(FaceMesh& fm, FaceSurface& fs, int passes, const SplitBounds& bounds = {});
 
 // Inner nodes next to a triangle under 15 degrees, which smoothing towards
 // the neighbours' mean can leave there (a node far off a short boundary

@@ -63,6 +63,12 @@ struct MeshOptions {
   // The chord-height bound the size map was built with (SizingParams::deviation;
   // 0: none): a sharp corner's long first segment on a curved face stays within it.
   double deviation = 0;
+  // Per face (index face id; empty or 0: none), the angle in radians an inner
+  // edge may turn along the surface (phi_c there, SizingParams): where the
+  // front left an edge over its size on a curved face, its chord cuts deeper
+  // than phi_c allows and it is split (optimise.h).
+  std::vector<double> max_turn;
+  double h_min = 0;  // the size map's floor: a split for turning leaves no edge under it
   // Called after each face with (faces done, faces in all), from any thread.
   std::function<void(int, int)> on_face_done;
 };
