@@ -235,11 +235,14 @@ double final_min_angle(const FaceMesh& fm, const std::array<int, 3>& t) {
 // 8 s / l). Where the front closed on a far node the surface lies furthest
 // from the mesh: a chord's height grows with its square. Each edge gets a
 // node at its uv midpoint and its two triangles become four, kept only if all
-// four are valid and none has an angle below both 20 degrees and the smallest
-// of the pair it replaces. Worst edges first, each triangle split once per
+// four are valid and none has an angle below both 20 degrees (15 for a chord
+// off the surface) and the smallest of the pair it replaces. Worst edges first, each triangle split once per
 // round. nbr: the triangles' neighbours (neighbours()) on entry.
 constexpr double kSplitAbove = 1.4;
 constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin triangle
+// A chord too far off the surface breaks the accuracy asked for, a long edge
+// only the size: a split for the first may leave an angle down to 15 degrees.
+constexpr double kSplitMinAngleOffSurface = 15;
 // An edge up to 1.4 curvature sizes long turns by 1.4 phi_c and cuts twice as
 // deep as phi_c allows (height ~ length^2); 1.25 keeps it within 1.6 times.
 // Edges under 1.1 sizes are left alone, and so are those a split
@@ -264,6 +267,7 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, const SplitBounds& bounds,
   struct Long {
     double excess;  // over 1: by length (in kSplitAbove sizes), off the surface (in d) or turning
     int t, k;
+    bool off_surface;  // the excess is the distance from the surface (deviation or turn), not the length
   };
   std::vector<Long> longs;
   for (int t = 0; t < static_cast<int>(fm.tris.size()); ++t) {
@@ -282,19 +286,20 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, const SplitBounds& bounds,
       }
       if (t2 < t) continue;  // each edge once
       const double h = std::sqrt(fm.s[a].h * fm.s[b].h);
-      double excess = h > 0 ? len / (kSplitAbove * h) : 0;
+      const double by_length = h > 0 ? len / (kSplitAbove * h) : 0;
+      double excess = 0;
       const bool turn = max_turn > 0 && h > 0 && len > kTurnSplitAbove * h && len >= 2 * bounds.h_floor;
       const Vec2 uv_mid = 0.5 * (fm.uv[a] + fm.uv[b]);
       const Vec3 mid = 0.5 * (fm.position(a) + fm.position(b));
       if (deviation > 0) excess = std::max(excess, off(uv_mid, mid) / deviation);
       if (turn) excess = std::max(excess, 8 * off(uv_mid, mid, true) / len / (kTurnSlack * max_turn));
-      if (excess > 1) longs.push_back({excess, t, k});
+      if (std::max(excess, by_length) > 1) longs.push_back({std::max(excess, by_length), t, k, excess > by_length});
     }
     if (deviation > 0 && longest >= 0) {
       const double centre = off((fm.uv[tr[0]] + fm.uv[tr[1]] + fm.uv[tr[2]]) / 3.0,
                                 (fm.position(tr[0]) + fm.position(tr[1]) + fm.position(tr[2])) / 3.0) /
                             deviation;
-      if (centre > 1) longs.push_back({centre, t, longest});
+      if (centre > 1) longs.push_back({centre, t, longest, true});
     }
   }
   std::sort(longs.begin(), longs.end(), [](const Long& x, const Long& y) {
@@ -323,13 +328,14 @@ int split_long_edges(FaceMesh& fm, FaceSurface& fs, const SplitBounds& bounds,
     const std::array<const Vec3*, 4> x{&fm.position(a), &fm.position(b), &fm.position(c), &fm.position(d)};
     // (a, m, c), (m, b, c), (b, m, d), (m, a, d): corners as indices into u / p, 4 for m.
     const int corners[4][3] = {{0, 4, 2}, {4, 1, 2}, {1, 4, 3}, {4, 0, 3}};
+    const double floor = std::min(angle_old, l.off_surface ? kSplitMinAngleOffSurface : kSplitMinAngle);
     bool keep = true;
     for (const auto& cn : corners) {
       auto U = [&](int i) { return i == 4 ? uv : u[i]; };
       auto P = [&](int i) -> const SurfaceSample& { return i == 4 ? sm : *p[i]; };
       auto X = [&](int i) -> const Vec3& { return i == 4 ? sm.p : *x[i]; };
       keep = keep && shape(U(cn[0]), U(cn[1]), U(cn[2]), P(cn[0]), P(cn[1]), P(cn[2]), fs) >= 0 &&
-             min_angle_deg(X(cn[0]), X(cn[1]), X(cn[2])) >= std::min(angle_old, kSplitMinAngle);
+             min_angle_deg(X(cn[0]), X(cn[1]), X(cn[2])) >= floor;
     }
     if (!keep) continue;
     const int m = fm.add_node(uv, sm, -1);
