@@ -146,11 +146,13 @@ def sweep(a):
     # Netgen 6.2 from Python ignores the meshing parameters of an OCC geometry
     # (its mesh is the same for every curvature safety and maxh tried), so it
     # gives one point per model.
-    # sizemesh: deviation bounds with phi_c = 30; down to 2.83e-4 also with phi_c = 90
-    # (at a coarse deviation, 30 degrees per element across small fillets sets the floor).
-    levels = {"sizemesh": [(1.28e-2, 90), (9.05e-3, 90), (6.4e-3, 90), (4.53e-3, 90), (3.2e-3, 90), (2.26e-3, 90),
-                           (1.6e-3, 90), (1.13e-3, 90), (8e-4, 90), (5.66e-4, 90), (4e-4, 90), (2.83e-4, 90),
-                           3.2e-3, 1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+    # sizemesh: deviation bounds in steps of sqrt(2) with phi_c = 30, and down to 2.83e-4
+    # also with phi_c = 90 (at a coarse deviation, 30 degrees per element across small
+    # fillets sets the floor). Steps of 2 missed the knees of the curve: a narrow face or
+    # short curve sets a size once the bound falls under half its width or length, and
+    # the count jumps there.
+    bounds = [1.28e-2 / math.sqrt(2) ** k for k in range(19)]  # 1.28e-2 down to 2.5e-5
+    levels = {"sizemesh": [(b, 90) for b in bounds if b > 2.8e-4] + bounds,
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
@@ -170,7 +172,7 @@ def sweep(a):
         info = model_info(a.build, path)
         for tool in tools:
             for level in levels[tool]:
-                tag = "%g" % level if not isinstance(level, tuple) else "%g_phi%g" % level
+                tag = "%.3g" % level if not isinstance(level, tuple) else "%.3g_phi%g" % level
                 out = os.path.join(tmp, "%s_%s_%s.msh" % (name, tool, tag))
                 wall, err = run(tool_command(a, tool, name, path, out, info, level), a.timeout)
                 m = metrics(a.build, path, out) if wall is not None and os.path.exists(out) else None
