@@ -200,6 +200,7 @@ def sweep(a):
                 ratio.append("-" if r is None else "%s%.2f" % ("" if r[0] == "=" else r[0], n / r[1]))
             print("| %s | %s | %.2e | %d | %s | %s |" % (name, tool, d, n, ratio[0], ratio[1]))
     print_peer_levels(curves)
+    print_mean_ratios(rows)
     with open(os.path.join(tmp, "curves.json"), "w") as f:
         json.dump({"%s|%s" % k: v for k, v in curves.items()}, f, indent=1)
     out = a.out or tmp
@@ -240,6 +241,22 @@ def print_peer_levels(curves):
         print("| %s | %s | %d | %d | %d |" % (name, tool, le, gt, unknown))
 
 
+def print_mean_ratios(rows):
+    """As print_peer_levels, at each peer mesh's mean distance (no tally: the must-hold is on the maximum)."""
+    print("\nAt each peer mesh's mean distance, triangles sizemesh needs (interpolated on its mean curve) / the peer's:\n")
+    print("| model | peer run | mean dist/diag | peer triangles | sizemesh / peer | sizemesh-fidelity / peer |")
+    print("|---|---|---:|---:|---:|---:|")
+    flip = {"=": "", "<": ">", ">": "<"}
+    for name, peer, level, n, _, mean, _, _ in rows:
+        if peer.startswith("sizemesh"):
+            continue
+        ratio = []
+        for tool in ("sizemesh", "sizemesh-fidelity"):
+            r = matched([(row[5], row[3]) for row in rows if row[0] == name and row[1] == tool], mean)
+            ratio.append("-" if r is None else "%s%.2f" % (flip[r[0]], r[1] / n))
+        print("| %s | %s %s | %.2e | %d | %s | %s |" % (name, peer, level, mean, n, ratio[0], ratio[1]))
+
+
 def load_peer_rows(paths, tools):
     """Rows of earlier sweep.csv files for the tools not run now: Gmsh and Netgen take minutes
     per model and do not change between sizemesh versions; with no --tools at all, the tables
@@ -263,6 +280,9 @@ def write_sweep_csv(path, rows):
             f.write("%s,%s,%s,%d,%.6e,%.6e,%.6f,%.3f\n" % r)
 
 
+COLOURS = {"sizemesh": "C2", "sizemesh-fidelity": "C3", "gmsh": "C0", "netgen": "C1"}  # the same in every panel
+
+
 def plot_sweep(path, rows):
     """Triangles against maximum (top) and mean (bottom) distance, log-log, one column per
     model, one curve per tool: each tool's runs that no other of its runs beats on both counts."""
@@ -283,7 +303,8 @@ def plot_sweep(path, rows):
             ax = axes[row][col]
             for tool in tools:
                 pts = pareto([(r[column], r[3]) for r in rows if r[0] == name and r[1] == tool and r[column] > 0])
-                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool, markersize=4)
+                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=tool, markersize=4,
+                          color=COLOURS.get(tool))
             ax.set_title(name)
             ax.set_xlabel("%s distance of centroids and edge midpoints from the CAD / diagonal" % label, fontsize=8)
             ax.set_ylabel("triangles")
