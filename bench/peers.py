@@ -14,7 +14,7 @@ ratios against Gmsh. Never fails on numbers.
 
 --sweep compares at matched accuracy instead: each tool runs at several levels
 of its own refinement parameter (Gmsh: phi_c; sizemesh: the deviation bound,
-with phi_c = 30, and with 90 at the bounds down to 2.83e-4; Netgen 6.2 ignores its meshing parameters on OCC geometry
+with phi_c = 30, and with 90 and 20 at the bounds down to 2.83e-4; Netgen 6.2 ignores its meshing parameters on OCC geometry
 from Python, so it gives one point), and for every sizemesh mesh the triangles a
 peer needs for the same maximum distance are interpolated (log-log)
 between that peer's two bracketing meshes. The curves are also written as
@@ -147,12 +147,13 @@ def sweep(a):
     # (its mesh is the same for every curvature safety and maxh tried), so it
     # gives one point per model.
     # sizemesh: deviation bounds in steps of sqrt(2) with phi_c = 30, and down to 2.83e-4
-    # also with phi_c = 90 (at a coarse deviation, 30 degrees per element across small
-    # fillets sets the floor). Steps of 2 missed the knees of the curve: a narrow face or
-    # short curve sets a size once the bound falls under half its width or length, and
+    # also with phi_c = 90 and 20 (at a coarse deviation, 30 degrees per element across
+    # small fillets sets the floor, or is too coarse where a bound loose enough to leave
+    # thin faces alone is wanted). Steps of 2 missed the knees of the curve: a narrow face
+    # or short curve sets a size once the bound falls under half its width or length, and
     # the count jumps there.
     bounds = [1.28e-2 / math.sqrt(2) ** k for k in range(19)]  # 1.28e-2 down to 2.5e-5
-    levels = {"sizemesh": [(b, 90) for b in bounds if b > 2.8e-4] + bounds,
+    levels = {"sizemesh": [(b, phi) for phi in (90, 20) for b in bounds if b > 2.8e-4] + bounds,
               "gmsh": [30, 20, 10, 7, 5, 3.5, 2.5], "netgen": [5]}
     levels["sizemesh-fidelity"] = levels["sizemesh"]
     tools = [t for t in ["sizemesh", "sizemesh-fidelity", "gmsh", "netgen"] if t in a.tools]
