@@ -236,8 +236,9 @@ double final_min_angle(const FaceMesh& fm, const std::array<int, 3>& t) {
 // from the mesh: a chord's height grows with its square. Each edge gets a
 // node at its uv midpoint and its two triangles become four, kept only if all
 // four are valid and none has an angle below both 20 degrees (15 for a chord
-// off the surface) and the smallest of the pair it replaces. Worst edges first, each triangle split once per
-// round. nbr: the triangles' neighbours (neighbours()) on entry.
+// off the surface) and the smallest of the pair it replaces. Worst edges
+// first, each triangle split once per round. nbr: the triangles' neighbours
+// (neighbours()) on entry.
 constexpr double kSplitAbove = 1.4;
 constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin triangle
 // A chord too far off the surface breaks the accuracy asked for, a long edge
@@ -245,9 +246,9 @@ constexpr double kSplitMinAngle = 20;  // degrees: a split makes no new thin tri
 constexpr double kSplitMinAngleOffSurface = 15;
 // An edge up to 1.4 curvature sizes long turns by 1.4 phi_c and cuts twice as
 // deep as phi_c allows (height ~ length^2); 1.25 keeps it within 1.6 times.
-// Edges under 1.1 sizes are left alone, and so are those a split
-// would cut under h_min: there a small radius turns every edge by more than
-// phi_c, and h_min is the user's word on how small to go.
+// Edges under 1.1 sizes are left alone, and so are those a split would cut
+// under h_min: there a small radius turns every edge by more than phi_c, and
+// h_min is the user's word on how small to go.
 constexpr double kTurnSlack = 1.25;
 constexpr double kTurnSplitAbove = 1.1;
 int split_long_edges(FaceMesh& fm, FaceSurface& fs, const SplitBounds& bounds,

@@ -2,11 +2,10 @@
 // shape in space, smoothing of the nodes inside the face (moved in uv,
 // evaluated on the surface), splits of the edges left too long for the size
 // map or too far off the surface or turning too much along it (SplitBounds),
-// and a last search for
-// nodes next to thin triangles. Validity is kept throughout: triangles stay
-// counter-clockwise in uv and facing the surface normal in space; boundary
-// nodes and edges are fixed; last, inner nodes too close to a neighbour are
-// merged into it (collapse_thin_triangles).
+// and a last search for nodes next to thin triangles. Validity is kept
+// throughout: triangles stay counter-clockwise in uv and facing the surface
+// normal in space; boundary nodes and edges are fixed; last, inner nodes too
+// close to a neighbour are merged into it (collapse_thin_triangles).
 //
 // Input/output: fm (triangles and inner node positions change), fs its sampler.
 #pragma once
