@@ -1,6 +1,7 @@
 #include "mesher/mesh_surface.h"
 
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <new>
 
@@ -192,6 +193,13 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
   SurfaceMesh out;
   arena.execute([&] { out = mesh_in_arena(g, h, o); });
   return out;
+}
+
+void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces) {
+  o.deviation = p.deviation;
+  o.h_min = h_min;
+  o.max_turn.assign(faces + 1, 0.0);
+  for (int f = 1; f <= faces; ++f) o.max_turn[f] = p.face_phi_c(f) * M_PI / 180.0;
 }
 
 }  // namespace sizemesh

@@ -21,10 +21,15 @@
 
 #include "geometry/geometry.h"
 #include "mesher/surface_mesh.h"
+#include "sizing/params.h"
 #include "sizing/size_function.h"
 
 namespace sizemesh {
 
 SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o = {});
+
+// Hands the mesher the accuracy the size map was built for: p's deviation
+// bound, phi_c per face (the turn an inner edge may make) and the map's h_min.
+void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces);
 
 }  // namespace sizemesh

@@ -29,10 +29,6 @@ double face_deviation_size(const Geometry& g, int face, const Vec2& uv, double d
 }
 
 namespace {
-double local(const std::map<int, double>& m, int id, double fallback) {
-  auto it = m.find(id);
-  return it == m.end() ? fallback : it->second;
-}
 // Under a deviation bound delta, radii r <= delta are below its accuracy: the
 // whole arc lies within delta of its chord.
 bool below_accuracy(double k, const SizingParams& p) {
@@ -73,14 +69,14 @@ double triangle_deviation_curvature(double k1, double k2) {
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
   double k1, k2;
   if (!face_curvatures(g, face, uv, k1, k2) || below_accuracy(k1, p)) return kNoLimit;
-  return std::min(angular_size(std::abs(k1), local(p.face_phi_c_deg, face, p.phi_c_deg), p),
+  return std::min(angular_size(std::abs(k1), p.face_phi_c(face), p),
                   deviation_size(triangle_deviation_curvature(k1, k2), p.deviation));
 }
 
 double curve_curvature_size(const Geometry& g, int curve, double t, const SizingParams& p) {
   double k;
   if (!g.curve_curvature(curve, t, k) || below_accuracy(k, p)) return kNoLimit;
-  return std::min(angular_size(k, local(p.curve_phi_c_deg, curve, p.phi_c_deg), p), deviation_size(k, p.deviation));
+  return std::min(angular_size(k, p.curve_phi_c(curve), p), deviation_size(k, p.deviation));
 }
 
 std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {

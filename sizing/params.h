@@ -50,9 +50,19 @@ struct SizingParams {
   // diagonals in slivers too thin for a gradient to mean anything.
   std::set<int> edge_graded_faces;
 
+  // phi_c (degrees) on a face or curve: its local value, else the global one.
+  double face_phi_c(int face) const { return local_or(face_phi_c_deg, face, phi_c_deg); }
+  double curve_phi_c(int curve) const { return local_or(curve_phi_c_deg, curve, phi_c_deg); }
+
   // Absolute bounds for a model of this bounding-box diagonal.
   double resolved_h_min(double diagonal) const { return h_min > 0 ? h_min : h_min_rel * diagonal; }
   double resolved_h_max(double diagonal) const { return h_max > 0 ? h_max : h_max_rel * diagonal; }
+
+ private:
+  static double local_or(const std::map<int, double>& m, int id, double fallback) {
+    const auto it = m.find(id);
+    return it == m.end() ? fallback : it->second;
+  }
 };
 
 // Throws Error (one sentence) on values outside their domain or ids the model

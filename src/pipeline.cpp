@@ -1,6 +1,5 @@
 #include "src/pipeline.h"
 
-#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -154,13 +153,7 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   r.query.emplace(size_query_for(model, r.bg, r.sizes.h));                  // sizing/ (4.2)
   MeshOptions meshing = o.meshing;
   meshing.expected_triangles = r.estimate.per_face;
-  meshing.deviation = r.params.deviation;
-  meshing.h_min = r.sizes.h_min;
-  meshing.max_turn.assign(model.num_faces() + 1, 0.0);
-  for (int f = 1; f <= model.num_faces(); ++f) {
-    const auto it = r.params.face_phi_c_deg.find(f);
-    meshing.max_turn[f] = (it == r.params.face_phi_c_deg.end() ? r.params.phi_c_deg : it->second) * M_PI / 180.0;
-  }
+  set_accuracy(meshing, r.params, r.sizes.h_min, model.num_faces());
   meshing.on_face_done = [&r](int done, int total) { r.clock.faces(done, total); };
   r.mesh = mesh_surface(model, *r.query, meshing);                          // mesher/ (4.1)
   r.clock.lap("meshing");

@@ -211,8 +211,7 @@ TEST_CASE("default sizes mesh the ONERA M6 in at most 60k triangles within 2e-4 
   smooth(bg, h);
   const SizeQuery query = size_query_for(model, bg, h.h);
   MeshOptions o;
-  o.max_turn.assign(model.num_faces() + 1, SizingParams{}.phi_c_deg * M_PI / 180);
-  o.h_min = h.h_min;
+  set_accuracy(o, SizingParams{}, h.h_min, model.num_faces());
   const SurfaceMesh m = mesh_surface(model, query, o);
   REQUIRE(m.failures.empty());
   CHECK(m.tris.size() <= 60000);
@@ -253,9 +252,7 @@ TEST_CASE("the ONERA M6 under a coarse deviation bound: chords off by more are s
   smooth(bg, h);
   const SizeQuery query = size_query_for(model, bg, h.h);
   MeshOptions o;
-  o.deviation = p.deviation;
-  o.max_turn.assign(model.num_faces() + 1, p.phi_c_deg * M_PI / 180);
-  o.h_min = h.h_min;
+  set_accuracy(o, p, h.h_min, model.num_faces());
   const SurfaceMesh m = mesh_surface(model, query, o);
   REQUIRE(m.failures.empty());
   double worst = 0;
