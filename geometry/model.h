@@ -2,6 +2,7 @@
 // OpenCASCADE stays behind the pimpl; sizing/ and mesher/ use it as a Geometry.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,10 +25,15 @@ struct FlowDomainOptions {
   bool active() const { return farfield != FarField::None || symmetry_axis >= 0; }
 };
 
+// Called with one line as each long step of loading starts.
+using ProgressSink = std::function<void(const std::string&)>;
+
 struct LoadOptions {
   bool sew = true;                  // sew faces that touch so they share curves
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
   bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
+  double union_seconds = 10;        // the union's wall-time budget; an attempt past it is abandoned
+  ProgressSink progress;            // told which component is being united
   FlowDomainOptions domain;
 };
 
@@ -55,6 +61,7 @@ struct ModelInfo {
   bool sewn = false;       // sewing was run
   int entities_failed = 0;     // file entities the reader could not read or translate
   std::string first_failure;   // the first of them: "entity #26 (AXIS2_PLACEMENT_3D): <reason>"
+  std::vector<std::string> read_repairs;  // what the reader mended in the file's layout, one line each
   int sewn_faces = 0;          // faces after sewing: the ids the config file and --no-union use
   Preparation preparation;     // components, repair and union
   FlowDomain domain;           // far field and symmetry plane; the bounding box is the body's

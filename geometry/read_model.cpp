@@ -26,13 +26,19 @@
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <iterator>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <map>
 
+#include "geometry/iges_layout.h"
 #include "geometry/occt_model.h"
 
 namespace sizemesh {
@@ -229,12 +235,45 @@ TopoDS_Shape read_step(const std::string& path, ModelInfo& info,
   return shape;
 }
 
+// A copy of an IGES file in the standard column layout, removed with this object.
+struct RealignedIges {
+  std::string path;
+  ~RealignedIges() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove(path, ec);
+  }
+};
+
+// The path to read: the file itself, or a realigned copy of it when its
+// parameter data run into column 65 (geometry/iges_layout.h).
+std::string iges_to_read(const std::string& path, ModelInfo& info, RealignedIges& copy) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::optional<IgesRealignment> fixed = realign_iges_parameters(text);
+  if (!fixed) return path;
+  std::error_code ec;
+  copy.path = (fs::temp_directory_path(ec) / ("sizemesh-" + std::to_string(::getpid()) + "-" +
+                                              std::to_string(reinterpret_cast<std::uintptr_t>(&copy)) + ".igs"))
+                  .string();
+  std::ofstream out(copy.path, std::ios::binary);
+  out << fixed->text;
+  if (!out.flush()) {
+    copy.path.clear();
+    return path;
+  }
+  info.read_repairs.push_back(std::to_string(fixed->lines_moved) +
+                             " IGES parameter lines have data in column 65, where the entity pointer belongs: "
+                             "read as if laid out in columns 1-64");
+  return copy.path;
+}
+
 // The IGES reader fixes its length scale when it parses the file, so the file
 // is read in millimetres and scaled to its own unit afterwards.
 TopoDS_Shape read_iges(const std::string& path, ModelInfo& info) {
   set_target_unit("MM");
   IGESControl_Reader reader;
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+  RealignedIges copy;
+  if (reader.ReadFile(iges_to_read(path, info, copy).c_str()) != IFSelect_RetDone) {
     note_failures(reader.WS(), info);
     throw Error("cannot parse IGES file '" + path + "' (truncated or malformed)" + failure_note(info));
   }

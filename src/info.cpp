@@ -29,14 +29,15 @@ void print_info(const Model& model, std::ostream& out) {
         << (c.closed ? "closed" : std::to_string(c.free_curves) + " free curves") << ", area " << c.area << ", box ["
         << c.bbox_min.x() << ", " << c.bbox_min.y() << ", " << c.bbox_min.z() << "] - [" << c.bbox_max.x() << ", "
         << c.bbox_max.y() << ", " << c.bbox_max.z() << "] -> " << c.role;
+    if (!c.route.empty()) out << ", " << c.route;
     if (c.faces_removed) out << " (" << c.faces_removed << " faces taken out)";
     out << "\n";
   }
   if (prep.union_requested) {
     out << "union:       ";
     if (prep.fused) out << prep.solids_fused << " solids fused";
-    else if (!prep.fallback.empty()) out << "not kept: " << prep.fallback;
-    else out << "not needed";
+    if (!prep.not_united.empty()) out << (prep.fused ? ", " : "") << prep.not_united.size() << " components not united";
+    if (!prep.fused && prep.not_united.empty()) out << (prep.fallback.empty() ? "not needed" : "not kept: " + prep.fallback);
     out << "; " << prep.duplicate_faces_removed << " duplicate and " << prep.internal_faces_removed
         << " internal faces removed; " << prep.faces_split_at_folds << " split at folds or parameter jumps; "
         << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
@@ -49,6 +50,7 @@ void print_info(const Model& model, std::ostream& out) {
   if (d.symmetry_axis >= 0)
     out << std::setprecision(6) << "symmetry:    " << static_cast<char>('x' + d.symmetry_axis) << " = " << d.symmetry_at
         << ", " << d.symmetry_faces << " faces\n";
+  for (const auto& line : i.read_repairs) out << "repaired:    " << line << "\n";
   if (i.entities_failed)
     out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";
   int named = 0;
