@@ -46,9 +46,10 @@ void delimiters(const std::vector<std::string>& global, char& param, char& recor
   param = ',';
   record = ';';
   size_t i = 0;
+  // "1Hx" then the delimiter, or an empty field (the default) then ','.
   if (g.compare(0, 2, "1H") == 0 && g.size() > 3) {
     param = g[2];
-    i = 3;
+    i = 4;
   } else if (!g.empty() && g[0] == ',') {
     i = 1;
   } else {

@@ -261,8 +261,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
   PreparedShape prepared;
   try {
     // Unsewn faces are each a component of their own: repair and union need sewing.
-    prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, info.diagonal(), options.unite && options.sew,
-                             info.preparation);
+    prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, info.diagonal(), options, info.preparation);
   } catch (const Standard_Failure& e) {
     // The preparation only ever improves the model: without it, mesh what was read.
     prepared = PreparedShape{};

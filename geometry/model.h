@@ -32,7 +32,7 @@ struct LoadOptions {
   bool sew = true;                  // sew faces that touch so they share curves
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
   bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
-  double union_seconds = 10;        // the union's wall-time budget; an attempt past it is abandoned
+  double union_seconds = 0;         // the union's wall-time budget; 0: union_budget's default
   ProgressSink progress;            // told which component is being united
   FlowDomainOptions domain;
 };
@@ -140,6 +140,11 @@ CadFile read_cad(const std::string& path, const LoadOptions& options = {});
 // Geometry preparation (geometry/prepare.h), then stable ids and cached
 // per-entity data.
 Model prepare_model(const CadFile& cad, const LoadOptions& options = {});
+
+// The union's wall-time budget for a file: options.union_seconds, or by
+// default 4 s per component after sewing, at least 12 s. An attempt past it
+// is abandoned for the next route.
+double union_budget(const CadFile& cad, const LoadOptions& options);
 
 // read_cad then prepare_model.
 Model load_model(const std::string& path, const LoadOptions& options = {});

@@ -1,6 +1,7 @@
 // OpenCASCADE side of Model; included only by geometry/*.cpp and tests that build shapes.
 #pragma once
 
+#include <BOPAlgo_Builder.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
@@ -73,6 +74,23 @@ int count_free_curves(const TopoDS_Shape& shape);
 // The solid a closed shell bounds, oriented outward; null when it cannot be made.
 TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell);
 
+// Called with a piece of a face for every face a step of the preparation
+// replaces (face before, face after), so each result face keeps its source id.
+using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
+
+// The faces a general fuse made of face f (f itself when it kept it whole).
+std::vector<TopoDS_Face> pieces_of(BOPAlgo_Builder& fuse, const TopoDS_Face& f);
+
+class Deadline;
+// geometry/unite.cpp: the union of closed `solids` (each of info.components
+// [component[i]]) one at a time, grouped by overlapping boxes, each step
+// checked and retried (fuzzy, healed) within `deadline`. Returns a compound
+// of the united groups and of the solids left out; sets each component's
+// route, info.not_united, info.solids_fused and info.fused.
+TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::vector<int>& component, double tol,
+                          const Deadline& deadline, const Follow& follow, const ProgressSink& progress,
+                          Preparation& info);
+
 // The prepared shape and, for each of its faces, the id of the sewn face it
 // came from (ids: `original`'s indices).
 struct PreparedShape {
@@ -82,9 +100,11 @@ struct PreparedShape {
 // geometry/prepare.cpp: components, repair and (when `unite`) union.
 // `area`: exact areas of the sewn faces; `diagonal`: the model's bounding-box
 // diagonal.
+// `options.unite && options.sew` asks for repair and union, within
+// options.union_seconds.
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
-                            const TopTools_DataMapOfShapeReal& area, double tolerance, double diagonal, bool unite,
-                            Preparation& info);
+                            const TopTools_DataMapOfShapeReal& area, double tolerance, double diagonal,
+                            const LoadOptions& options, Preparation& info);
 
 // geometry/fold_split.cpp: faces of `shape` split along their C0 knot lines
 // where the surface turns over (normals more than 60 degrees apart) within

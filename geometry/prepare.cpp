@@ -46,6 +46,7 @@
 #include <functional>
 #include <memory>
 
+#include "geometry/deadline.h"
 #include "geometry/occt_model.h"
 
 namespace sizemesh {
@@ -230,14 +231,6 @@ TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
   return ex.More() ? solid_from_shell(TopoDS::Shell(ex.Current())) : TopoDS_Solid();
 }
 
-// The faces a general fuse made of face f (f itself when it kept it whole).
-FaceList pieces_of(BOPAlgo_Builder& fuse, const TopoDS_Face& f) {  // history queries are not const in OCCT
-  FaceList out;
-  for (const auto& p : fuse.Modified(f)) out.push_back(TopoDS::Face(p));
-  if (out.empty() && !fuse.IsDeleted(f)) out.push_back(f);
-  return out;
-}
-
 // The repair of one open component. A null `closed` on return means "keep
 // the component as it was".
 struct Repair {
@@ -324,28 +317,28 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
 
 double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm(); }
 
-using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
-
 // The general fuse of the bodies and the sheets (BOPAlgo_Builder): every curve
 // where a sheet meets a body or another sheet is shared by the faces on both
 // sides, and sheet pieces inside a body (or lying on its surface) are
 // dropped. Returns the kept faces as a compound, oriented as in the result,
 // or a null shape when the fuse fails.
 TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
-                            double tol, const Follow& follow, Preparation& info) {
+                            double tol, const Deadline& deadline, const Follow& follow, Preparation& info) {
   TopTools_ListOfShape args;
   for (const auto& s : bodies) args.Append(s);
   for (const auto& s : sheets) args.Append(s);
   BOPAlgo_Builder fuse;
   fuse.SetArguments(args);
   fuse.SetRunParallel(true);
+  Handle(DeadlineIndicator) stop = new DeadlineIndicator(deadline.end());
   try {
-    fuse.Perform();
+    fuse.Perform(stop->Start());
   } catch (const Standard_Failure&) {
     fuse.AddError(new BOPAlgo_AlertBuilderFailed);
   }
   if (fuse.HasErrors() || fuse.Shape().IsNull()) {
-    info.fallback = "the sheets could not be imprinted";
+    info.fallback = stop->UserBreak() ? "the sheets could not be imprinted within the preparation's time"
+                                      : "the sheets could not be imprinted";
     return {};
   }
   std::vector<TopoDS_Shape> solids;
@@ -372,17 +365,35 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
   return out;
 }
 
+double default_budget(const LoadOptions& o, size_t components) {
+  return o.union_seconds > 0 ? o.union_seconds : std::max(12.0, 4.0 * static_cast<double>(components));
+}
+
 }  // namespace
 
+double union_budget(const CadFile& cad, const LoadOptions& options) {
+  return default_budget(options, components_of(cad.impl().shape).size());
+}
+
+FaceList pieces_of(BOPAlgo_Builder& fuse, const TopoDS_Face& f) {  // history queries are not const in OCCT
+  FaceList out;
+  for (const auto& p : fuse.Modified(f)) out.push_back(TopoDS::Face(p));
+  if (out.empty() && !fuse.IsDeleted(f)) out.push_back(f);
+  return out;
+}
+
 PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapOfShape& original,
-                            const TopTools_DataMapOfShapeReal& area, double tol, double diagonal, bool unite,
-                            Preparation& info) {
+                            const TopTools_DataMapOfShapeReal& area, double tol, double diagonal,
+                            const LoadOptions& options, Preparation& info) {
+  const bool unite = options.unite && options.sew;
   PreparedShape out;
   info = Preparation{};
   info.union_requested = unite;
   info.faces_before = original.Extent();
   for (int i = 1; i <= original.Extent(); ++i) out.source.Bind(original(i), i);
   const std::vector<TopoDS_Shape> parts = components_of(sewn);
+  info.seconds_budget = default_budget(options, parts.size());
+  const Deadline deadline(info.seconds_budget);
   for (const auto& s : parts) {
     info.components.push_back(describe(s, area));
     for (const auto& f : faces_of(s)) info.components.back().face_ids.push_back(original.FindIndex(f));
@@ -396,7 +407,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
 
   // Repair each open component; collect the solids and sheets.
   std::vector<TopoDS_Shape> solids, sheets;
+  std::vector<int> solid_component, sheet_component;
   FaceList loose;
+  std::vector<int> loose_component;
   const Follow follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
     if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
   };
@@ -406,11 +419,20 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     if (s.ShapeType() == TopAbs_SOLID) {
       c.role = "solid";
       solids.push_back(s);
+      solid_component.push_back(static_cast<int>(k));
       continue;
     }
     Repair r;
     if (c.closed) {
       r.closed = s;
+    } else if (s.ShapeType() == TopAbs_FACE && count_free_curves(s) == 0) {
+      // One face closed on itself (a body of revolution with poles): its shell.
+      TopoDS_Shell shell;
+      BRep_Builder b;
+      b.MakeShell(shell);
+      b.Add(shell, s);
+      shell.Closed(true);
+      r.closed = shell;
     } else if (s.ShapeType() == TopAbs_SHELL) {
       r = repair_component(faces_of(s), tol, diagonal_of(c));
       for (const auto& f : r.kept) follow(f, r.sewn.after(f));
@@ -419,6 +441,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     if (solid.IsNull()) {
       c.role = "sheet";
       sheets.push_back(s);
+      sheet_component.push_back(static_cast<int>(k));
       continue;
     }
     c.role = "solid";
@@ -427,59 +450,33 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     info.internal_faces_removed += r.internal;
     if (!c.closed) ++info.components_repaired;
     solids.push_back(solid);
-    for (const auto& f : r.sheets) loose.push_back(f);
+    solid_component.push_back(static_cast<int>(k));
+    for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
   }
   // Faces taken out of one component may lie inside another one (the plane
   // of the left tail inside the right tail): those are internal too.
-  for (const auto& f : loose) {
-    if (inside_any(f, solids, tol)) ++info.internal_faces_removed;
-    else sheets.push_back(f);
+  for (size_t i = 0; i < loose.size(); ++i) {
+    if (inside_any(loose[i], solids, tol)) ++info.internal_faces_removed;
+    else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);
   }
 
   if (solids.size() >= 2) {
-    TopTools_ListOfShape args;
-    for (const auto& s : solids) args.Append(s);
-    TopoDS_Shape fused;
-    for (double fuzzy : {0.0, tol}) {
-      try {
-        BOPAlgo_CellsBuilder cells;
-        cells.SetArguments(args);
-        cells.SetRunParallel(true);
-        if (fuzzy > 0) cells.SetFuzzyValue(fuzzy);
-        cells.Perform();
-        if (cells.HasErrors()) {
-          info.fallback = "the general fuse failed";
-          continue;
-        }
-        cells.AddAllToResult(1, false);
-        cells.RemoveInternalBoundaries();
-        const TopoDS_Shape& shape = cells.Shape();
-        if (shape.IsNull() || !BRepCheck_Analyzer(shape).IsValid()) {
-          info.fallback = "the union is not a valid shape";
-          continue;
-        }
-        if (count_free_curves(shape) != 0) {
-          info.fallback = "the union is not closed";
-          continue;
-        }
-        for (const auto& s : solids)
-          for (const auto& f : faces_of(s))
-            for (const auto& piece : pieces_of(cells, f)) follow(f, piece);
-        fused = shape;
-        info.fallback.clear();
-        break;
-      } catch (const Standard_Failure& e) {
-        info.fallback = std::string("the general fuse failed: ") + e.GetMessageString();
-      }
-    }
-    if (!fused.IsNull()) {
-      info.fused = true;
-      info.solids_fused = static_cast<int>(solids.size());
-      solids = {fused};
-    }
+    const TopoDS_Shape united = unite_solids(solids, solid_component, tol, deadline, follow, options.progress, info);
+    solids.clear();
+    for (TopExp_Explorer ex(united, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
+  } else if (solids.size() == 1) {
+    info.components[solid_component[0]].route = "alone: the only closed component";
   }
   TopoDS_Shape result;
-  if (!sheets.empty() && solids.size() + sheets.size() >= 2) result = imprint_sheets(solids, sheets, tol, follow, info);
+  if (!sheets.empty() && solids.size() + sheets.size() >= 2) {
+    if (options.progress) options.progress("imprinting " + std::to_string(sheets.size()) + " open components");
+    result = imprint_sheets(solids, sheets, tol, deadline, follow, info);
+    for (int k : sheet_component) {
+      if (info.components[k].role == "sheet")
+        info.components[k].route = result.IsNull() ? "not united: " + info.fallback : "imprinted";
+      if (result.IsNull()) info.not_united.push_back(k + 1);
+    }
+  }
   if (result.IsNull()) {
     BRep_Builder b;
     TopoDS_Compound all;
@@ -488,6 +485,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     for (const auto& s : solids) b.Add(all, s);
     result = all;
   }
+  std::sort(info.not_united.begin(), info.not_united.end());
+  info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
   // Folds narrower than half the default smallest element become curves.
   out.shape = split_folds(result, kFoldBand * diagonal, follow, info.faces_split_at_folds);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());

@@ -24,6 +24,11 @@ struct Component {
   // After repair: "solid" (closed, takes part in the union), "sheet" (open,
   // meshed where it lies).
   std::string role;
+  // How it joined the wetted surface: "B-rep union" (also ", fuzzy" and
+  // ", healed"), "alone: ..." (it touches no other component), "imprinted"
+  // (a sheet cut where it meets the bodies), or "not united: <why>" (meshed
+  // where it lies; the run ends with exit 3).
+  std::string route;
   int faces_removed = 0;  // duplicate or internal faces taken out by the repair
   std::vector<int> face_ids;  // its faces' ids in the sewn model (Model::source_face)
 };
@@ -36,9 +41,12 @@ struct Preparation {
   int components_repaired = 0;        // open components closed by the repair
   int solids_fused = 0;               // closed components merged by the union
   bool fused = false;                 // the union ran and its result was kept
+  int pocket_faces_removed = 0;       // faces of air pockets the union enclosed (no flow reaches them)
   int sheets_imprinted = 0;           // open components joined to the rest by the general fuse
   int sheet_pieces_dropped = 0;       // pieces of them inside a body
   std::string fallback;               // why the union was not kept; empty when it was or was not needed
+  std::vector<int> not_united;        // components (1-based) left where they lie: the surface is not one
+  double seconds_budget = 0;          // the union's time budget
   int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element
   int faces_before = 0, faces_after = 0;
 };

@@ -1,5 +1,8 @@
 #include "src/cli_options.h"
 
+#include <chrono>
+#include <iostream>
+
 #include <cmath>
 
 #include "sizing/options.h"
@@ -37,6 +40,10 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
   app.add_flag("!--no-sew", cl.options.load.sew, "do not sew faces that touch");
   app.add_flag("!--no-union", cl.options.load.unite,
                "mesh each component where it lies: no repair of open components, no union of the closed ones");
+  app.add_option("--union-seconds", cl.options.load.union_seconds,
+                 "wall-time budget of the union of components (default 4 s per component, at least 12); an attempt "
+                 "past it is abandoned and the components it leaves out are named (exit 3)")
+      ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--sew-tolerance", cl.options.load.sewing_tolerance_rel, "sewing tolerance relative to the bounding-box diagonal")
       ->capture_default_str()->check(positive);
   app.add_option("--deflection", cl.options.tessellation.deflection_rel,
@@ -89,6 +96,13 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
   o.load.domain.farfield = cl.farfield == "sphere" ? FF::Sphere : cl.farfield == "box" ? FF::Box : FF::None;
   o.load.domain.symmetry_axis = cl.symmetry == "none" ? -1 : cl.symmetry[0] - 'x';
   o.load.domain.symmetry_at_given = cl.symmetry_at->count() > 0;
+  if (o.verbose) {
+    // The union's progress, once loading has taken more than a second.
+    const auto start = std::chrono::steady_clock::now();
+    o.load.progress = [start](const std::string& line) {
+      if (std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) std::cerr << "sizemesh: " << line << "\n";
+    };
+  }
   for (const SizingOption& opt : sizing_options()) {
     if (opt.set) opt.set(o.sizing, cl.words[opt.key]);
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);

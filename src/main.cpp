@@ -9,6 +9,7 @@
 #include "src/cli_options.h"
 #include "src/info.h"
 #include "src/pipeline.h"
+#include "src/watchdog.h"
 
 namespace {
 
@@ -47,8 +48,11 @@ int main(int argc, char** argv) {
   }
   finish_run_options(app, cl);
   try {
+    cl.options.preparation_grace = 10;
     if (cl.info_only) {
-      print_info(load_model(cl.options.input, cl.options.load), std::cout);
+      const CadFile cad = read_cad(cl.options.input, cl.options.load);
+      const auto hard_stop = preparation_hard_stop(cad, cl.options);
+      print_info(prepare_model(cad, cl.options.load), std::cout);
       return kOk;
     }
     return run(cl.options);

@@ -19,6 +19,7 @@
 #include "src/report.h"
 #include "src/sizing_report.h"
 #include "src/vtu_writer.h"
+#include "src/watchdog.h"
 
 namespace sizemesh {
 
@@ -93,9 +94,33 @@ void size_domain_faces(const Model& model, SizingParams& params) {
     }
 }
 
+// One line naming the components the union left out (the run ends with exit 3).
+void warn_not_united(const Preparation& p, const WarningSink& warn) {
+  if (p.not_united.empty()) return;
+  std::ostringstream msg;
+  msg << (p.not_united.size() == 1 ? "component" : "components");
+  for (size_t i = 0; i < p.not_united.size(); ++i) {
+    const Component& c = p.components[p.not_united[i] - 1];
+    msg << (i ? "; " : " ") << p.not_united[i] << " (" << c.faces << " faces, "
+        << c.route.substr(c.route.find(':') == std::string::npos ? 0 : c.route.find(':') + 2) << ")";
+  }
+  msg << " could not be united with the rest: meshed where they lie, so the surface is not one closed body (exit 3)";
+  warn(msg.str());
+}
+
 void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning: " << line << "\n"; }
 
 }  // namespace
+
+std::unique_ptr<Watchdog> preparation_hard_stop(const CadFile& cad, const RunOptions& o) {
+  if (!(o.preparation_grace > 0)) return nullptr;
+  const double budget = union_budget(cad, o.load);
+  std::ostringstream msg;
+  msg << "the union of the components of '" << o.input << "' did not end within " << budget + o.preparation_grace
+      << " s (OpenCASCADE's general fuse did not stop at its --union-seconds budget of " << budget
+      << " s); rerun with --no-union to mesh the components where they lie";
+  return std::make_unique<Watchdog>(budget + o.preparation_grace, msg.str());
+}
 
 std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& warn) {
   auto r = std::make_unique<RunResult>(o.verbose);
@@ -104,12 +129,14 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   if (!o.config.empty()) apply_config(o.config, o.sizing_from_cli, r->params);
   const CadFile cad = read_cad(o.input, o.load);                               // geometry/
   r->clock.lap("load");
-  r->model.emplace(prepare_model(cad, o.load));                                // geometry/prepare
+  {
+    const auto hard_stop = preparation_hard_stop(cad, o);
+    r->model.emplace(prepare_model(cad, o.load));                              // geometry/prepare
+  }
   const Model& model = *r->model;
   r->clock.lap("prepare");
   const ModelInfo& info = model.info();
-  if (!info.preparation.fallback.empty())  // the union is what makes the surface closed
-    warn("geometry preparation incomplete (" + info.preparation.fallback + "): those components are meshed where they lie");
+  warn_not_united(info.preparation, warn);
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/
@@ -117,6 +144,7 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   if (!info.domain.farfield.empty() && info.domain.inside_points.empty())
     warn("no closed solid of the body was found inside the far field: a volume mesher cannot tell the body's "
          "inside from the fluid around it (see --info for free curves)");
+  for (const auto& line : info.read_repairs) warn(line);
   if (info.entities_failed > 0)
     warn(std::to_string(info.entities_failed) + " entities could not be read and are left out of the mesh; first: " +
          info.first_failure);

@@ -11,6 +11,7 @@
 #include "geometry/background_mesh.h"
 #include "geometry/model.h"
 #include "mesher/surface_mesh.h"
+#include "src/watchdog.h"
 #include "sizing/params.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
@@ -34,7 +35,16 @@ struct RunOptions {
   EdgeSolver edge_solver = EdgeSolver::Dijkstra;
   MeshOptions meshing;
   bool verbose = true;
+  // The command line's hard stop (src/watchdog.h): the preparation may take
+  // its union budget and this many seconds more before the process ends
+  // with an error; 0 none.
+  double preparation_grace = 0;
 };
+
+// The command line's hard stop around the preparation of `cad`: the union's
+// attempts are told to stop at its budget; this catches one that does not
+// listen. Disarmed when it goes out of scope.
+std::unique_ptr<Watchdog> preparation_hard_stop(const CadFile& cad, const RunOptions& o);
 
 // Exit codes of the sizemesh command.
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kPartial = 3 };
@@ -55,7 +65,12 @@ struct RunResult {
   std::vector<std::string> warnings;  // one line each, without the "sizemesh: warning: " prefix
   bool meshed() const { return report.mesh != nullptr; }
   MeshLabels labels() const { return label_faces(*model); }
-  int exit_code() const { return mesh.failures.empty() ? kOk : kPartial; }
+  // Partial: a face not meshed, or components left out of the union (their
+  // meshes overlap the rest: not one closed surface).
+  int exit_code() const {
+    const bool apart = model && !model->info().preparation.not_united.empty();
+    return mesh.failures.empty() && !apart ? kOk : kPartial;
+  }
 };
 
 // Called with each warning as it arises (the command prints it at once).

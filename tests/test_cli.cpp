@@ -107,7 +107,7 @@ TEST_CASE("info reports unit, bounding box, counts and free curves") {
   // internal planes and the caps between their halves are taken out.
   CHECK(r.out.find("components:  7 after sewing") != std::string::npos);
   CHECK(r.out.find("10 free curves, area 343.2") != std::string::npos);
-  CHECK(r.out.find("-> solid (6 faces taken out)") != std::string::npos);
+  CHECK(r.out.find("-> solid, B-rep union (6 faces taken out)") != std::string::npos);
   CHECK(r.out.find("union:       7 solids fused; 4 duplicate and 5 internal faces removed; 0 split at folds or parameter jumps; 69 faces before, 58 after") !=
         std::string::npos);
   const auto raw = test::run_sizemesh("--info --no-union " + test::model_path("f16_openvsp.stp"));
@@ -151,10 +151,11 @@ TEST_CASE("a flag on the command line wins over the config file, and the file's 
   fs::remove_all(dir);
 }
 
-TEST_CASE("the test models are the CAD files in tests/data, each with its source, one list for tests and benches") {
+TEST_CASE("the test models are the CAD files in tests/data, each with its source, in the lists for tests and benches") {
   const fs::path data = fs::path(SIZEMESH_EXAMPLES_DIR) / ".." / "tests" / "data";
   std::set<std::string> listed, present;
   for (const auto& m : test::shared_models()) listed.insert(m.file);
+  for (const auto& f : test::union_corpus()) listed.insert(f);
   for (const auto& e : fs::directory_iterator(data)) {
     const std::string ext = e.path().extension().string();
     if (ext == ".stp" || ext == ".step" || ext == ".igs" || ext == ".iges" || ext == ".brep")

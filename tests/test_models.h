@@ -33,6 +33,17 @@ inline const std::vector<SharedModel>& shared_models() {
   return models;
 }
 
+// The aircraft the union is developed against (issue: every aircraft file to
+// one clean wetted surface). They do not all give one closed surface yet;
+// tests/test_union.cpp holds each to what it does today: it ends, and names
+// what it could not unite.
+inline const std::vector<std::string>& union_corpus() {
+  static const std::vector<std::string> files = {"transport_wbnp_openvsp.stp", "tbw_sugar_openvsp.stp",
+                                                 "pegasus_openvsp.stp", "wing_blunt_te_openvsp.stp",
+                                                 "c172_wing_pygeo.igs"};
+  return files;
+}
+
 inline std::string model_path(const std::string& file) { return std::string(SIZEMESH_MODELS_DIR) + "/" + file; }
 
 }  // namespace sizemesh::test
