@@ -97,8 +97,9 @@ def main():
                     f"{tris:9d} {mesh.get('boundary_edges', -1):5d} {mesh.get('nonmanifold_edges', -1):6d} "
                     f"{mesh.get('orientation_conflicts', -1):5d} {mesh.get('self_intersecting_pairs', -1):6d} "
                     f"{share:8.3f} {100.0 * mesh.get('share_at_h_min', float('nan')):7.2f} {verdict:>7s}  {routes(j)}")
-            if code not in (0, 3) and err:
-                line += "  | " + err.strip().splitlines()[-1][:160]
+            errors = [e for e in err.splitlines() if e.startswith("sizemesh: error:")]
+            if code not in (0, 3) and errors:
+                line += "  | " + errors[-1][len("sizemesh: error: "):][:160]
             print(line, flush=True)
 
 
