@@ -10,19 +10,17 @@
 //    volume (an internal sheet such as a wing's planform plane), otherwise it
 //    stays as a sheet of its own. A component that does not close is kept as
 //    it was read: nothing is lost.
-// The union is the general fuse of every closed component (all pairs
-// intersected, BOPAlgo_CellsBuilder), keeping all cells as one material and
-// removing the boundaries between them; it is kept only when the result is a
-// valid shape with no free curve. Every result face records its source face.
+// The union of the closed components is geometry/unite.cpp; open components
+// left are imprinted on the bodies by the general fuse. Every attempt runs
+// within the union's time budget, and every result face records its source
+// face.
 #include "geometry/prepare.h"
 
 #include <BOPAlgo_Alerts.hxx>
 #include <BOPAlgo_Builder.hxx>
-#include <BOPAlgo_CellsBuilder.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
-#include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
