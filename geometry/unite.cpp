@@ -266,7 +266,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
           const TopoDS_Shape part = r.heal ? healed(solids[k], tol, healing) : solids[k];
           if (part.IsNull()) continue;
           step = fuse({group, part}, r.fuzzy, std::min(budget, deadline.remaining()));
-                if (!step.shape.IsNull()) {
+          if (!step.shape.IsNull()) {
             c.route = r.name;
             break;
           }
