@@ -91,6 +91,31 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
                           const Deadline& deadline, const Follow& follow, const ProgressSink& progress,
                           Preparation& info);
 
+// The coordinate planes through 0 that bound the model's box (within
+// `tolerance`): where the root of a half model lies.
+struct HalfModelPlanes {
+  bool candidate[3] = {false, false, false};
+  double tolerance = 0;
+};
+HalfModelPlanes half_model_planes(const Vec3& lo, const Vec3& hi, double tol);
+
+// geometry/caps.cpp: planar faces over the closed, flat loops of free curves
+// of `shape`. Loops on a half-model plane are capped only when its axis is
+// `cap_axis` (the symmetry plane the run cuts at; -1 none), else counted.
+struct Caps {
+  std::vector<TopoDS_Face> faces;
+  int half_model_loops = 0;
+  int half_model_axis = -1;
+};
+Caps planar_caps(const TopoDS_Shape& shape, double tol, const HalfModelPlanes& half, int cap_axis);
+
+// geometry/pinch_split.cpp: `faces` with each face whose boundary runs along
+// one line twice (two coincident edges: a wing's zero-thickness tip) split in
+// two between them, so sewing can join the halves; (face, piece) pairs in
+// `pieces`.
+std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, double tol,
+                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces);
+
 // The prepared shape and, for each of its faces, the id of the sewn face it
 // came from (ids: `original`'s indices).
 struct PreparedShape {

@@ -152,6 +152,18 @@ FaceList faces_on_free_curves(const FaceList& faces, const Sewn& s) {
   return out;
 }
 
+double face_area(const TopoDS_Face& f) {
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(f, g);
+  return std::abs(g.Mass());
+}
+
+double volume_of(const TopoDS_Shape& solid) {
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(solid, g);
+  return std::abs(g.Mass());
+}
+
 // Pairs of faces lying on each other: same area, centre and box within `tol`.
 std::vector<std::pair<int, int>> coincident_pairs(const FaceList& faces, double tol) {
   struct Props {
@@ -233,14 +245,25 @@ TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
 // the component as it was".
 struct Repair {
   TopoDS_Shape closed;    // the closed, sewn component (a shell), or null
+  TopoDS_Shape half_open;  // or a half model's shell, open only on its plane
   Sewn sewn;              // the sewing that made it
   FaceList kept;          // faces of `closed`, before that sewing
   FaceList sheets;        // faces taken out that lie outside the component's volume
-  int duplicates = 0, internal = 0;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> split;  // (face read, piece) of faces split at a slit
+  int duplicates = 0, internal = 0, caps = 0;
+  int half_model_axis = -1;  // the half-model plane its free loops lie on
 };
 
-Repair repair_component(const FaceList& faces, double tol, double component_diagonal) {
+// Faces of `faces` and of `more`.
+FaceList joined(FaceList faces, const FaceList& more) {
+  faces.insert(faces.end(), more.begin(), more.end());
+  return faces;
+}
+
+Repair repair_component(const FaceList& read, double tol, double component_diagonal, const HalfModelPlanes& half,
+                        int cap_axis) {
   Repair r;
+  const FaceList faces = split_pinched(read, tol, r.split);
   // A looser sewing may close it alone (a sewing ladder up to 1e-3 of the
   // component's size), judged by the free curves left.
   for (double t : {tol, 10 * tol, 100 * tol}) {
@@ -278,8 +301,12 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
       }
     }
   }
-  // Faces on free curves, best first, while each removal closes more.
+  // Faces on free curves, best first, while each removal closes more. What
+  // is taken out stays under half the component's area: an internal plane or
+  // a cap, never the skin that bounds the body.
   FaceList removed;
+  double area_left = 0, area_out = 0;
+  for (const auto& f : current) area_left += face_area(f);
   for (int round = 0; round < kMaxRounds && now.free_curves > 0; ++round) {
     FaceList cand = faces_on_free_curves(current, now);
     if (cand.size() > static_cast<size_t>(kMaxCandidates)) cand.resize(kMaxCandidates);
@@ -289,6 +316,7 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
       FaceList trial;
       for (const auto& f : current)
         if (!f.IsSame(cand[c])) trial.push_back(f);
+      if (trial.empty() || area_out + face_area(cand[c]) > 0.5 * area_left) continue;
       Sewn s = sew(trial, tol);
       if (s.free_curves < (best < 0 ? now.free_curves : best_sewn.free_curves)) {
         best = static_cast<int>(c);
@@ -297,17 +325,43 @@ Repair repair_component(const FaceList& faces, double tol, double component_diag
     }
     if (best < 0) break;
     removed.push_back(cand[best]);
+    area_out += face_area(cand[best]);
     current.erase(std::find_if(current.begin(), current.end(), [&](const TopoDS_Face& f) { return f.IsSame(cand[best]); }));
     now = best_sewn;
   }
-  if (now.free_curves != 0) return {};
-  const TopoDS_Solid solid = solid_of(now.shape);
-  if (solid.IsNull()) return {};
+  // Flat loops left open (a tip or a root without its cap) get planar caps.
+  if (now.free_curves > 0) {
+    const Caps caps = planar_caps(now.shape, tol, half, cap_axis);
+    r.half_model_axis = caps.half_model_axis;
+    if (!caps.faces.empty()) {
+      FaceList trial = joined(current, caps.faces);
+      Sewn s = sew(trial, tol);
+      if (s.free_curves < now.free_curves) {
+        current = trial;
+        now = s;
+        r.caps = static_cast<int>(caps.faces.size());
+      }
+    }
+  }
+  // Open on its half-model plane alone: capped there for a moment, to tell
+  // the faces taken out inside it from those outside, and kept open.
+  TopoDS_Solid solid;
+  if (now.free_curves != 0) {
+    if (r.half_model_axis < 0) return {};
+    const Sewn capped = sew(joined(current, planar_caps(now.shape, tol, half, r.half_model_axis).faces), tol);
+    if (capped.free_curves != 0) return {};
+    solid = solid_of(capped.shape);
+    r.half_open = now.shape;
+  } else {
+    solid = solid_of(now.shape);
+    r.closed = now.shape;
+  }
+  // A cap lying on a face (a planform plane and the cap over its rim) bounds no volume.
+  if (solid.IsNull() || volume_of(solid) < 1e-6 * std::pow(component_diagonal, 3)) return {};
   for (const auto& f : removed) {
     if (inside_solid(f, solid, tol)) ++r.internal;
     else r.sheets.push_back(f);
   }
-  r.closed = now.shape;
   r.sewn = now;
   r.kept = current;
   return r;
@@ -403,6 +457,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     return out;
   }
 
+  Vec3 lo = info.components.front().bbox_min, hi = info.components.front().bbox_max;
+  for (const Component& c : info.components) lo = lo.cwiseMin(c.bbox_min), hi = hi.cwiseMax(c.bbox_max);
+  const HalfModelPlanes half = half_model_planes(lo, hi, tol);
   // Repair each open component; collect the solids and sheets.
   std::vector<TopoDS_Shape> solids, sheets;
   std::vector<int> solid_component, sheet_component;
@@ -432,8 +489,21 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       shell.Closed(true);
       r.closed = shell;
     } else if (s.ShapeType() == TopAbs_SHELL) {
-      r = repair_component(faces_of(s), tol, diagonal_of(c));
+      r = repair_component(faces_of(s), tol, diagonal_of(c), half, options.domain.symmetry_axis);
+      for (const auto& [f, piece] : r.split) follow(f, piece);
       for (const auto& f : r.kept) follow(f, r.sewn.after(f));
+    }
+    if (!r.half_open.IsNull()) {
+      c.role = "sheet";
+      c.route = std::string("half model: open on the plane ") + static_cast<char>('x' + r.half_model_axis) + " = 0";
+      c.faces_removed = r.duplicates + r.internal + static_cast<int>(r.sheets.size());
+      info.duplicate_faces_removed += r.duplicates;
+      info.internal_faces_removed += r.internal;
+      info.half_model_axis = r.half_model_axis;
+      sheets.push_back(r.half_open);
+      sheet_component.push_back(static_cast<int>(k));
+      for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
+      continue;
     }
     const TopoDS_Solid solid = r.closed.IsNull() ? TopoDS_Solid() : solid_of(r.closed);
     if (solid.IsNull()) {
@@ -444,6 +514,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     }
     c.role = "solid";
     c.faces_removed = r.duplicates + r.internal + static_cast<int>(r.sheets.size());
+    c.caps_added = r.caps;
+    info.caps_added += r.caps;
     info.duplicate_faces_removed += r.duplicates;
     info.internal_faces_removed += r.internal;
     if (!c.closed) ++info.components_repaired;

@@ -30,6 +30,7 @@ struct Component {
   // where it lies; the run ends with exit 3).
   std::string route;
   int faces_removed = 0;  // duplicate or internal faces taken out by the repair
+  int caps_added = 0;     // planar faces closing its flat open loops (a tip, a root)
   std::vector<int> face_ids;  // its faces' ids in the sewn model (Model::source_face)
 };
 
@@ -39,6 +40,8 @@ struct Preparation {
   int duplicate_faces_removed = 0;    // coincident face pairs inside one component
   int internal_faces_removed = 0;     // sheets lying inside their own component's volume
   int components_repaired = 0;        // open components closed by the repair
+  int caps_added = 0;                 // planar caps over flat open loops
+  int half_model_axis = -1;           // 0-2: a half model, open on the plane x, y or z = 0; -1 not
   int solids_fused = 0;               // closed components merged by the union
   bool fused = false;                 // the union ran and its result was kept
   int pocket_faces_removed = 0;       // faces of air pockets the union enclosed (no flow reaches them)

@@ -31,6 +31,7 @@ void print_info(const Model& model, std::ostream& out) {
         << c.bbox_max.y() << ", " << c.bbox_max.z() << "] -> " << c.role;
     if (!c.route.empty()) out << ", " << c.route;
     if (c.faces_removed) out << " (" << c.faces_removed << " faces taken out)";
+    if (c.caps_added) out << " (" << c.caps_added << " planar caps added)";
     out << "\n";
   }
   if (prep.union_requested) {
@@ -50,6 +51,10 @@ void print_info(const Model& model, std::ostream& out) {
   if (d.symmetry_axis >= 0)
     out << std::setprecision(6) << "symmetry:    " << static_cast<char>('x' + d.symmetry_axis) << " = " << d.symmetry_at
         << ", " << d.symmetry_faces << " faces\n";
+  if (i.preparation.half_model_axis >= 0)
+    out << "half model:  open on the plane " << static_cast<char>('x' + i.preparation.half_model_axis)
+        << " = 0 (--symmetry " << static_cast<char>('x' + i.preparation.half_model_axis)
+        << " with a far field closes it)\n";
   for (const auto& line : i.read_repairs) out << "repaired:    " << line << "\n";
   if (i.entities_failed)
     out << "unread:      " << i.entities_failed << " entities; first: " << i.first_failure << "\n";

@@ -137,6 +137,10 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   r->clock.lap("prepare");
   const ModelInfo& info = model.info();
   warn_not_united(info.preparation, warn);
+  if (const int a = info.preparation.half_model_axis; a >= 0 && info.domain.symmetry_axis != a)
+    warn(std::string("a half model, open on the plane ") + static_cast<char>('x' + a) +
+         " = 0: its mesh has boundary edges there; --symmetry " + static_cast<char>('x' + a) +
+         " with a far field closes it");
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/

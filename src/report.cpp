@@ -29,6 +29,7 @@ nlohmann::json report_json(const RunReport& r) {
                           {"bbox_max", {c.bbox_max.x(), c.bbox_max.y(), c.bbox_max.z()}},
                           {"role", c.role},
                           {"route", c.route},
+                          {"caps_added", c.caps_added},
                           {"faces_removed", c.faces_removed}});
   j["preparation"] = {{"components", components},
                       {"union_requested", prep.union_requested},
@@ -36,6 +37,8 @@ nlohmann::json report_json(const RunReport& r) {
                       {"solids_fused", prep.solids_fused},
                       {"fallback", prep.fallback},
                       {"not_united", prep.not_united},
+                      {"caps_added", prep.caps_added},
+                      {"half_model_axis", prep.half_model_axis},
                       {"union_seconds", prep.seconds_budget},
                       {"duplicate_faces_removed", prep.duplicate_faces_removed},
                       {"internal_faces_removed", prep.internal_faces_removed},

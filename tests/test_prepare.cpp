@@ -314,9 +314,11 @@ TEST_CASE("fuselage, wing through it and sheet fin on it: one surface, exact are
   CHECK(q.nonmanifold_edges == root);
 }
 
-TEST_CASE("an open box that cannot be closed stays as a sheet: its part outside the closed box is kept") {
+TEST_CASE("an open box whose mouth lies flat is capped there and united with the box it reaches out of") {
   // A: the unit cube. B: a box x 0.5..1.5, y and z 0.25..0.75, without its
-  // face at x = 1.5, so it reaches out of A through A's face x = 1.
+  // face at x = 1.5, so it reaches out of A through A's face x = 1. Its free
+  // curves are one flat loop: a planar cap closes it (an OpenVSP tip or strut
+  // root exported without its cap), and the union keeps what lies outside A.
   const TopoDS_Shape a = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 1.0, 1.0, 1.0).Shape();
   const double x0 = 0.5, x1 = 1.5, lo = 0.25, hi = 0.75;
   const TopoDS_Shape b = compound({quad({x0, lo, lo}, {x0, hi, lo}, {x0, hi, hi}, {x0, lo, hi}),
@@ -328,20 +330,17 @@ TEST_CASE("an open box that cannot be closed stays as a sheet: its part outside 
   const Preparation& p = model.info().preparation;
   REQUIRE(p.components.size() == 2);
   CHECK(p.components[0].role == "solid");
-  CHECK(p.components[1].role == "sheet");
+  CHECK(p.components[1].role == "solid");
   CHECK(p.components[1].free_curves == 4);
-  CHECK(p.sheets_imprinted == 1);
-  CHECK(p.fallback.empty());
-  // The cube whole, plus B's four sides beyond x = 1 (0.5 x 0.5 each).
-  CHECK(total_area(model) == Approx(6.0 + 4 * 0.25).epsilon(1e-9));
+  CHECK(p.components[1].caps_added == 1);
+  CHECK(p.caps_added == 1);
+  CHECK(p.not_united.empty());
+  CHECK(model.closed());
+  // The cube less the square B covers on x = 1, plus B's four sides beyond
+  // x = 1 (0.5 x 0.5 each) and its cap at x = 1.5.
+  CHECK(total_area(model) == Approx(6.0 - 0.25 + 4 * 0.25 + 0.25).epsilon(1e-9));
   const auto [m, q] = mesh_checked(model, 0.05);
-  // Open only at B's mouth (x = 1.5); its sides meet the cube's face along a
-  // square used by three triangles.
-  for (const auto& [e, n] : edge_uses(m)) {
-    if (n == 2) continue;
-    const Vec3 mid = 0.5 * (m.xyz[e.first] + m.xyz[e.second]);
-    CHECK(std::abs(mid.x() - (n == 1 ? x1 : 1.0)) < 1e-9);
-  }
+  for (const auto& [e, n] : edge_uses(m)) CHECK(n == 2);
 }
 
 TEST_CASE("a closed solid passes through the preparation unchanged") {

@@ -52,19 +52,38 @@ TEST_CASE("IGES parameter data in column 65 are re-wrapped to 64 columns with po
   CHECK_FALSE(realign_iges_parameters(fixed->text));
 }
 
-TEST_CASE("the pyGeo IGES wing is read with one warning line and meshed") {
+TEST_CASE("the pyGeo IGES wing is read with one warning line and meshed as a half model") {
   const test::TempDir dir("union_iges");
   const std::string out = (dir / "c172.vtu");
   const auto r = test::run_sizemesh(test::model_path("c172_wing_pygeo.igs") + " -q -o " + out);
   INFO(r.err);
   REQUIRE(r.status == 0);
-  CHECK(r.err_lines() == 1);
+  CHECK(r.err_lines() == 2);
   CHECK(r.err.find("12 IGES parameter lines have data in column 65") != std::string::npos);
+  CHECK(r.err.find("a half model, open on the plane z = 0") != std::string::npos);
   const Model m = load_model(test::model_path("c172_wing_pygeo.igs"));
   CHECK(m.num_faces() == 6);
   CHECK(m.info().entities_failed == 0);
-  // A half wing: its root airfoil (two curves) is all that stays open.
+  // A half wing: its root airfoil (two curves, on z = 0) is all that stays open.
   CHECK(m.info().free_curves_after_sewing == 2);
+  CHECK(m.info().preparation.half_model_axis == 2);
+  CHECK(m.info().preparation.caps_added == 0);
+}
+
+TEST_CASE("a wing whose tips are slits and that carries its planform plane closes into one solid") {
+  // OpenVSP's blunt-trailing-edge half wing: one skin face pinched to a line
+  // at root and tip (two coincident edges each, which sewing cannot join),
+  // and a planform plane inside, sewn to one side of the tip slit. The skin
+  // is split between its slit edges, the halves sew, the plane is taken out.
+  const Model m = load_model(test::model_path("wing_blunt_te_openvsp.stp"));
+  const Preparation& p = m.info().preparation;
+  REQUIRE(p.components.size() == 1);
+  CHECK(p.components[0].role == "solid");
+  CHECK(p.internal_faces_removed == 1);
+  CHECK(m.closed());
+  CHECK(m.num_faces() == 2);
+  CHECK(m.info().solids == 1);
+  CHECK(p.half_model_axis == -1);
 }
 
 TEST_CASE("components the union cannot take within its budget are named and the run ends with exit 3") {

@@ -1,0 +1,150 @@
+// Faces pinched along a slit (split_pinched, geometry/occt_model.h).
+//
+// OpenVSP writes a wing's upper and lower skin as one B-spline face; where
+// the tip has zero thickness the face's boundary runs out along the tip chord
+// and back along the same line, as two coincident edges of the one face.
+// Sewing joins edges of different faces only, so the slit stays open (and an
+// internal planform plane may be sewn to one side of it instead). Split
+// between the two edges, along the parameter line through the point where
+// they meet, the face becomes two whose edges along the slit sewing joins.
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepLib.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Precision.hxx>
+#include <ShapeExtend.hxx>
+#include <ShapeUpgrade_FaceDivide.hxx>
+#include <ShapeUpgrade_ShapeDivide.hxx>
+#include <ShapeUpgrade_SplitSurface.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_HSequenceOfReal.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Vertex.hxx>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+// Splits the surface at one parameter value, u or v.
+class ParamSplitter : public ShapeUpgrade_SplitSurface {
+ public:
+  ParamSplitter(bool along_u, double t) : along_u_(along_u), t_(t) {}
+  void Compute(const Standard_Boolean /*segment*/) override {
+    const Handle(TColStd_HSequenceOfReal)& values = along_u_ ? myUSplitValues : myVSplitValues;
+    const double lo = values->Value(1), hi = values->Value(values->Length());
+    const double eps = 1e-6 * (hi - lo);
+    if (!(t_ > lo + eps && t_ < hi - eps)) return;
+    int i = 1;
+    while (i <= values->Length() && values->Value(i) < t_) ++i;
+    values->InsertBefore(i, t_);
+    myStatus |= ShapeExtend::EncodeStatus(ShapeExtend_DONE1);
+  }
+
+ private:
+  bool along_u_;
+  double t_;
+};
+
+gp_Pnt mid_point(const TopoDS_Edge& e) {
+  BRepAdaptor_Curve c(e);
+  return c.Value(0.5 * (c.FirstParameter() + c.LastParameter()));
+}
+
+// True when edges a and b run along the same line: both ends and the middle within tol.
+bool coincident(const TopoDS_Edge& a, const TopoDS_Edge& b, double tol) {
+  TopoDS_Vertex a0, a1, b0, b1;
+  TopExp::Vertices(a, a0, a1);
+  TopExp::Vertices(b, b0, b1);
+  if (a0.IsNull() || a1.IsNull() || b0.IsNull() || b1.IsNull()) return false;
+  const gp_Pnt pa0 = BRep_Tool::Pnt(a0), pa1 = BRep_Tool::Pnt(a1), pb0 = BRep_Tool::Pnt(b0), pb1 = BRep_Tool::Pnt(b1);
+  if (pa0.Distance(pa1) <= tol) return false;  // a closed edge is no slit
+  const bool same = pa0.Distance(pb0) <= tol && pa1.Distance(pb1) <= tol;
+  const bool reversed = pa0.Distance(pb1) <= tol && pa1.Distance(pb0) <= tol;
+  return (same || reversed) && mid_point(a).Distance(mid_point(b)) <= tol;
+}
+
+// The (u or v, value) to split face f at between its coincident edges a and
+// b: the parameter line through the end they share in uv, across the
+// direction they run in. False when there is none inside the face.
+bool split_line(const TopoDS_Face& f, const TopoDS_Edge& a, const TopoDS_Edge& b, bool& along_u, double& t) {
+  double fa, la, fb, lb;
+  const Handle(Geom2d_Curve) ca = BRep_Tool::CurveOnSurface(a, f, fa, la);
+  const Handle(Geom2d_Curve) cb = BRep_Tool::CurveOnSurface(b, f, fb, lb);
+  if (ca.IsNull() || cb.IsNull()) return false;
+  const gp_Pnt2d ends_a[2] = {ca->Value(fa), ca->Value(la)}, ends_b[2] = {cb->Value(fb), cb->Value(lb)};
+  double best = Precision::Infinite();
+  gp_Pnt2d shared;
+  for (const auto& p : ends_a)
+    for (const auto& q : ends_b)
+      if (p.Distance(q) < best) best = p.Distance(q), shared = p;
+  const gp_Vec2d run(ends_a[0], ends_a[1]);
+  along_u = std::abs(run.X()) >= std::abs(run.Y());  // edges along u: split at a u value
+  t = along_u ? shared.X() : shared.Y();
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  const double lo = along_u ? u0 : v0, hi = along_u ? u1 : v1;
+  const double eps = 1e-6 * (hi - lo);
+  return t > lo + eps && t < hi - eps;
+}
+
+// The pieces of f split at (along_u, t), or empty when that fails.
+std::vector<TopoDS_Face> divided(const TopoDS_Face& f, bool along_u, double t) {
+  Handle(ShapeUpgrade_FaceDivide) face_tool = new ShapeUpgrade_FaceDivide;
+  face_tool->SetSplitSurfaceTool(new ParamSplitter(along_u, t));
+  ShapeUpgrade_ShapeDivide divide(f);
+  divide.SetSplitFaceTool(face_tool);
+  divide.SetSurfaceSegmentMode(true);
+  if (!divide.Perform() || !divide.Status(ShapeExtend_DONE)) return {};
+  const TopoDS_Shape result = divide.Result();
+  if (result.IsNull()) return {};
+  BRepLib::SameParameter(result, Precision::Confusion(), true);
+  std::vector<TopoDS_Face> pieces;
+  for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) {
+    if (!BRepCheck_Analyzer(ex.Current()).IsValid()) return {};
+    pieces.push_back(TopoDS::Face(ex.Current()));
+  }
+  return pieces.size() > 1 ? pieces : std::vector<TopoDS_Face>{};
+}
+
+}  // namespace
+
+std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, double tol,
+                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces) {
+  std::vector<TopoDS_Face> out;
+  for (const TopoDS_Face& f : faces) {
+    std::vector<TopoDS_Face> split;
+    try {
+      TopTools_IndexedMapOfShape edges;
+      TopExp::MapShapes(f, TopAbs_EDGE, edges);
+      for (int i = 1; i <= edges.Extent() && split.empty(); ++i)
+        for (int j = i + 1; j <= edges.Extent() && split.empty(); ++j) {
+          const TopoDS_Edge& a = TopoDS::Edge(edges(i));
+          const TopoDS_Edge& b = TopoDS::Edge(edges(j));
+          if (BRep_Tool::Degenerated(a) || BRep_Tool::Degenerated(b) || !coincident(a, b, tol)) continue;
+          bool along_u;
+          double t;
+          if (split_line(f, a, b, along_u, t)) split = divided(f, along_u, t);
+        }
+    } catch (const Standard_Failure&) {
+      split.clear();
+    }
+    if (split.empty()) {
+      out.push_back(f);
+      continue;
+    }
+    for (const TopoDS_Face& p : split) {
+      pieces.emplace_back(f, p);
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+}  // namespace sizemesh
