@@ -34,6 +34,7 @@ struct LoadOptions {
   bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
   double union_seconds = 0;         // the union's wall-time budget; 0: union_budget's default
   ProgressSink progress;            // told which component is being united
+  bool describe_only = false;       // repair but no union (what --info needs to describe the file)
   FlowDomainOptions domain;
 };
 

@@ -530,7 +530,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);
   }
 
-  if (solids.size() >= 2) {
+  if (options.describe_only) {
+    info.union_skipped = true;
+  } else if (solids.size() >= 2) {
     const TopoDS_Shape united = unite_solids(solids, solid_component, tol, deadline, follow, options.progress, info);
     solids.clear();
     for (TopExp_Explorer ex(united, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
@@ -538,7 +540,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     info.components[solid_component[0]].route = "alone: the only closed component";
   }
   TopoDS_Shape result;
-  if (!sheets.empty() && solids.size() + sheets.size() >= 2) {
+  if (!options.describe_only && !sheets.empty() && solids.size() + sheets.size() >= 2) {
     if (options.progress) options.progress("imprinting " + std::to_string(sheets.size()) + " open components");
     result = imprint_sheets(solids, sheets, tol, deadline, follow, info);
     for (int k : sheet_component) {

@@ -36,6 +36,7 @@ struct Component {
 
 struct Preparation {
   bool union_requested = false;
+  bool union_skipped = false;  // requested, but only the description was asked for (--info)
   std::vector<Component> components;  // as sewn, before repair
   int duplicate_faces_removed = 0;    // coincident face pairs inside one component
   int internal_faces_removed = 0;     // sheets lying inside their own component's volume

@@ -36,9 +36,10 @@ void print_info(const Model& model, std::ostream& out) {
   }
   if (prep.union_requested) {
     out << "union:       ";
-    if (prep.fused) out << prep.solids_fused << " solids fused";
+    if (prep.union_skipped) out << "not run: --info describes the file, a mesh run unites its components";
+    else if (prep.fused) out << prep.solids_fused << " solids fused";
     if (!prep.not_united.empty()) out << (prep.fused ? ", " : "") << prep.not_united.size() << " components not united";
-    if (!prep.fused && prep.not_united.empty()) out << (prep.fallback.empty() ? "not needed" : "not kept: " + prep.fallback);
+    if (!prep.union_skipped && !prep.fused && prep.not_united.empty()) out << (prep.fallback.empty() ? "not needed" : "not kept: " + prep.fallback);
     out << "; " << prep.duplicate_faces_removed << " duplicate and " << prep.internal_faces_removed
         << " internal faces removed; " << prep.faces_split_at_folds << " split at folds or parameter jumps; "
         << prep.faces_before << " faces before, " << prep.faces_after << " after\n";

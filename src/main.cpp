@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   try {
     cl.options.preparation_grace = 10;
     if (cl.info_only) {
+      cl.options.load.describe_only = true;
       const CadFile cad = read_cad(cl.options.input, cl.options.load);
       const auto hard_stop = preparation_hard_stop(cad, cl.options);
       print_info(prepare_model(cad, cl.options.load), std::cout);

@@ -115,9 +115,16 @@ TEST_CASE("a union OpenCASCADE does not stop ends the run with one error line") 
   // Pegasus: one edge-face intersection of its untrimmed sheets runs for
   // minutes without asking whether to stop. The command's hard stop is the
   // budget + 10 s; the test's kill comes far later.
-  const auto r = test::run_sizemesh(test::model_path("pegasus_openvsp.stp") + " -q --union-seconds 1 --info", 120);
+  const test::TempDir dir("union_hard_stop");
+  const auto r = test::run_sizemesh(test::model_path("pegasus_openvsp.stp") + " -q --union-seconds 1 -o " +
+                                        (dir / "p.vtu"), 120);
   INFO(r.err);
   CHECK(r.status == 1);
   CHECK(r.err_lines() == 1);
   CHECK(r.err.find("rerun with --no-union") != std::string::npos);
+  // --info needs no union: it describes the 21 sewn components in seconds.
+  const auto info = test::run_sizemesh(test::model_path("pegasus_openvsp.stp") + " --info", 120);
+  CHECK(info.status == 0);
+  CHECK(info.out.find("components:  21 after sewing") != std::string::npos);
+  CHECK(info.out.find("union:       not run: --info describes the file") != std::string::npos);
 }
