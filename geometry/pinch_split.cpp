@@ -2,7 +2,8 @@
 //
 // OpenVSP writes a wing's upper and lower skin as one B-spline face; where
 // the tip has zero thickness the face's boundary runs out along the tip chord
-// and back along the same line, as two coincident edges of the one face.
+// and back along the same line, as two coincident edges of the one face, or
+// as one closed edge that folds back on itself.
 // Sewing joins edges of different faces only, so the slit stays open (and an
 // internal planform plane may be sewn to one side of it instead). Split
 // between the two edges, along the parameter line through the point where
@@ -26,6 +27,9 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Vertex.hxx>
+
+#include <algorithm>
+#include <vector>
 
 #include "geometry/occt_model.h"
 
@@ -94,6 +98,60 @@ bool split_line(const TopoDS_Face& f, const TopoDS_Edge& a, const TopoDS_Edge& b
   return t > lo + eps && t < hi - eps;
 }
 
+// Distance from p to the polyline `line`.
+double distance_to(const gp_Pnt& p, const std::vector<gp_Pnt>& line) {
+  double best = Precision::Infinite();
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const gp_Vec ab(line[i], line[i + 1]), ap(line[i], p);
+    const double len2 = ab.SquareMagnitude();
+    const double t = len2 > 0 ? std::clamp(ap.Dot(ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, p.Distance(line[i].Translated(t * ab)));
+  }
+  return best;
+}
+
+// A closed edge that runs out and back along itself (one edge for both
+// sides of a slit): true with the parameter where it turns back.
+bool folded(const TopoDS_Edge& e, double tol, double& turn) {
+  TopoDS_Vertex v0, v1;
+  TopExp::Vertices(e, v0, v1);
+  if (v0.IsNull() || !v0.IsSame(v1)) return false;
+  BRepAdaptor_Curve c(e);
+  const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+  constexpr int n = 64;
+  const gp_Pnt start = c.Value(t0);
+  int far = 0;
+  std::vector<gp_Pnt> p(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    p[i] = c.Value(t0 + (t1 - t0) * i / n);
+    if (p[i].Distance(start) > p[far].Distance(start)) far = i;
+  }
+  if (far == 0 || far == n || p[far].Distance(start) <= 10 * tol) return false;
+  const std::vector<gp_Pnt> out(p.begin(), p.begin() + far + 1), back(p.begin() + far, p.end());
+  for (int i = 0; i <= far; ++i)
+    if (distance_to(p[i], back) > tol) return false;
+  for (int i = far; i <= n; ++i)
+    if (distance_to(p[i], out) > tol) return false;
+  turn = t0 + (t1 - t0) * far / n;
+  return true;
+}
+
+// The (u or v, value) to split face f at across a folded edge: the parameter
+// line through its turning point, across the direction it runs in.
+bool split_line_at_turn(const TopoDS_Face& f, const TopoDS_Edge& e, double turn, bool& along_u, double& t) {
+  double f0, f1;
+  const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, f, f0, f1);
+  if (pc.IsNull()) return false;
+  const gp_Pnt2d a = pc->Value(f0), m = pc->Value(turn);
+  along_u = std::abs(m.X() - a.X()) >= std::abs(m.Y() - a.Y());
+  t = along_u ? m.X() : m.Y();
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  const double lo = along_u ? u0 : v0, hi = along_u ? u1 : v1;
+  const double eps = 1e-6 * (hi - lo);
+  return t > lo + eps && t < hi - eps;
+}
+
 // The pieces of f split at (along_u, t), or empty when that fails.
 std::vector<TopoDS_Face> divided(const TopoDS_Face& f, bool along_u, double t) {
   Handle(ShapeUpgrade_FaceDivide) face_tool = new ShapeUpgrade_FaceDivide;
@@ -132,6 +190,13 @@ std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, do
           double t;
           if (split_line(f, a, b, along_u, t)) split = divided(f, along_u, t);
         }
+      for (int i = 1; i <= edges.Extent() && split.empty(); ++i) {
+        const TopoDS_Edge& e = TopoDS::Edge(edges(i));
+        double turn, t;
+        bool along_u;
+        if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, f) || !folded(e, tol, turn)) continue;
+        if (split_line_at_turn(f, e, turn, along_u, t)) split = divided(f, along_u, t);
+      }
     } catch (const Standard_Failure&) {
       split.clear();
     }

@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <memory>
 
 #include "geometry/deadline.h"
@@ -200,6 +201,33 @@ std::vector<std::pair<int, int>> coincident_pairs(const FaceList& faces, double 
   return out;
 }
 
+// What one round of the repair may take out: each face on a free curve alone,
+// and each connected group of them (faces sharing a curve in the sewing):
+// a planform plane in pieces (one per wing segment and side) opens as much
+// as it closes when one piece goes, and closes only when all go together.
+std::vector<FaceList> removal_options(const FaceList& cand, const Sewn& s) {
+  std::vector<FaceList> out;
+  for (const auto& f : cand) out.push_back({f});
+  std::vector<int> group(cand.size());
+  for (size_t i = 0; i < cand.size(); ++i) group[i] = static_cast<int>(i);
+  const std::function<int(int)> root = [&](int i) { return group[i] == i ? i : group[i] = root(group[i]); };
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(s.shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  for (size_t i = 0; i < cand.size(); ++i)
+    for (size_t j = i + 1; j < cand.size(); ++j) {
+      const TopoDS_Face a = s.after(cand[i]), b = s.after(cand[j]);
+      bool touch = false;
+      for (TopExp_Explorer ex(a, TopAbs_EDGE); ex.More() && !touch; ex.Next())
+        for (TopExp_Explorer ey(b, TopAbs_EDGE); ey.More() && !touch; ey.Next()) touch = ex.Current().IsSame(ey.Current());
+      if (touch) group[root(static_cast<int>(i))] = root(static_cast<int>(j));
+    }
+  std::map<int, FaceList> groups;
+  for (size_t i = 0; i < cand.size(); ++i) groups[root(static_cast<int>(i))].push_back(cand[i]);
+  for (const auto& [r, faces] : groups)
+    if (faces.size() > 1) out.push_back(faces);
+  return out;
+}
+
 // A point inside the face (not on its boundary), found on a uv grid.
 bool interior_point(const TopoDS_Face& f, gp_Pnt& p) {
   double u0, u1, v0, v1;
@@ -312,11 +340,15 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     if (cand.size() > static_cast<size_t>(kMaxCandidates)) cand.resize(kMaxCandidates);
     int best = -1;
     Sewn best_sewn;
-    for (size_t c = 0; c < cand.size(); ++c) {
+    const std::vector<FaceList> options = removal_options(cand, now);
+    for (size_t c = 0; c < options.size(); ++c) {
       FaceList trial;
+      double out = 0;
+      for (const auto& f : options[c]) out += face_area(f);
       for (const auto& f : current)
-        if (!f.IsSame(cand[c])) trial.push_back(f);
-      if (trial.empty() || area_out + face_area(cand[c]) > 0.5 * area_left) continue;
+        if (std::none_of(options[c].begin(), options[c].end(), [&](const TopoDS_Face& g) { return g.IsSame(f); }))
+          trial.push_back(f);
+      if (trial.empty() || area_out + out > 0.5 * area_left) continue;
       Sewn s = sew(trial, tol);
       if (s.free_curves < (best < 0 ? now.free_curves : best_sewn.free_curves)) {
         best = static_cast<int>(c);
@@ -324,9 +356,11 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       }
     }
     if (best < 0) break;
-    removed.push_back(cand[best]);
-    area_out += face_area(cand[best]);
-    current.erase(std::find_if(current.begin(), current.end(), [&](const TopoDS_Face& f) { return f.IsSame(cand[best]); }));
+    for (const auto& g : options[best]) {
+      removed.push_back(g);
+      area_out += face_area(g);
+      current.erase(std::find_if(current.begin(), current.end(), [&](const TopoDS_Face& f) { return f.IsSame(g); }));
+    }
     now = best_sewn;
   }
   // Flat loops left open (a tip or a root without its cap) get planar caps.
