@@ -81,6 +81,22 @@ using Follow = std::function<void(const TopoDS_Face&, const TopoDS_Face&)>;
 // The faces a general fuse made of face f (f itself when it kept it whole).
 std::vector<TopoDS_Face> pieces_of(BOPAlgo_Builder& fuse, const TopoDS_Face& f);
 
+// One general fuse: the result, each input face's pieces in it (face before,
+// face after), and why it failed (empty when it did not).
+struct FuseStep {
+  TopoDS_Shape shape;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> pieces;
+  std::string failure;
+  int pocket_faces = 0;  // faces of enclosed air pockets dropped
+};
+
+// geometry/isolated_fuse.cpp: `here(false)` (a fuse of `parts`, one thread)
+// run in a child process that is ended at `seconds` whether or not the fuse
+// listens, its result handed back exactly (BinTools); `here(true)` in this
+// process when no child can be made.
+FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
+                       const std::function<FuseStep(bool parallel)>& here);
+
 class Deadline;
 // geometry/unite.cpp: the union of closed `solids` (each of info.components
 // [component[i]]) one at a time, grouped by overlapping boxes, each step

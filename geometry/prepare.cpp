@@ -410,43 +410,54 @@ double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm()
 // or a null shape when the fuse fails.
 TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
                             double tol, const Deadline& deadline, const Follow& follow, Preparation& info) {
-  TopTools_ListOfShape args;
-  for (const auto& s : bodies) args.Append(s);
-  for (const auto& s : sheets) args.Append(s);
-  BOPAlgo_Builder fuse;
-  fuse.SetArguments(args);
-  fuse.SetRunParallel(true);
-  Handle(DeadlineIndicator) stop = new DeadlineIndicator(deadline.end());
-  try {
-    fuse.Perform(stop->Start());
-  } catch (const Standard_Failure&) {
-    fuse.AddError(new BOPAlgo_AlertBuilderFailed);
-  }
-  if (fuse.HasErrors() || fuse.Shape().IsNull()) {
-    info.fallback = stop->UserBreak() ? "the sheets could not be imprinted within the preparation's time"
+  std::vector<TopoDS_Shape> parts = bodies;
+  parts.insert(parts.end(), sheets.begin(), sheets.end());
+  const FuseStep step = fuse_in_child(parts, deadline.remaining(), [&](bool parallel) {
+    FuseStep out;
+    TopTools_ListOfShape args;
+    for (const auto& p : parts) args.Append(p);
+    BOPAlgo_Builder fuse;
+    fuse.SetArguments(args);
+    fuse.SetRunParallel(parallel);
+    Handle(DeadlineIndicator) stop = new DeadlineIndicator(deadline.end());
+    try {
+      fuse.Perform(stop->Start());
+    } catch (const Standard_Failure&) {
+      fuse.AddError(new BOPAlgo_AlertBuilderFailed);
+    }
+    if (fuse.HasErrors() || fuse.Shape().IsNull()) {
+      out.failure = stop->UserBreak() ? "the sheets could not be imprinted within the preparation's time"
                                       : "the sheets could not be imprinted";
+      return out;
+    }
+    for (const auto& p : parts)
+      for (const auto& f : faces_of(p))
+        for (const auto& piece : pieces_of(fuse, f)) out.pieces.emplace_back(f, piece);
+    out.shape = fuse.Shape();
+    return out;
+  });
+  if (step.shape.IsNull()) {
+    info.fallback = step.failure;
     return {};
   }
   std::vector<TopoDS_Shape> solids;
   for (const auto& s : bodies)
     for (TopExp_Explorer ex(s, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
-  TopTools_MapOfShape dropped;
+  TopTools_MapOfShape sheet_faces, dropped;
   for (const auto& s : sheets)
-    for (const auto& f : faces_of(s))
-      for (const auto& piece : pieces_of(fuse, f)) {
-        if (inside_any(piece, solids, tol)) dropped.Add(piece);
-        else follow(f, piece);
-      }
-  for (const auto& s : bodies)
-    for (const auto& f : faces_of(s))
-      for (const auto& piece : pieces_of(fuse, f)) follow(f, piece);
+    for (const auto& f : faces_of(s)) sheet_faces.Add(f);
+  // Sheet pieces inside a body (or on its surface) go; every other piece keeps its source.
+  for (const auto& [f, piece] : step.pieces) {
+    if (sheet_faces.Contains(f) && inside_any(piece, solids, tol)) dropped.Add(piece);
+    else follow(f, piece);
+  }
   info.sheets_imprinted = static_cast<int>(sheets.size());
   info.sheet_pieces_dropped = dropped.Extent();
   TopoDS_Compound out;
   BRep_Builder b;
   b.MakeCompound(out);
   TopTools_MapOfShape added;
-  for (TopExp_Explorer ex(fuse.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+  for (TopExp_Explorer ex(step.shape, TopAbs_FACE); ex.More(); ex.Next())
     if (!dropped.Contains(ex.Current()) && added.Add(ex.Current())) b.Add(out, ex.Current());
   return out;
 }

@@ -109,22 +109,16 @@ std::string invalidity(const TopoDS_Shape& shape) {
   return out;
 }
 
-struct Step {
-  TopoDS_Shape shape;
-  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> pieces;  // (face before, face after) for the source ids
-  std::string failure;
-  int pocket_faces = 0;  // faces of enclosed pockets dropped
-};
-
-// The general fuse of `parts` as one solid, within `seconds`.
-Step fuse(const std::vector<TopoDS_Shape>& parts, double fuzzy, double seconds) {
-  Step out;
+// The general fuse of `parts` as one solid, within `seconds` (as far as the
+// fuse listens), on `parallel` threads.
+FuseStep fuse_here(const std::vector<TopoDS_Shape>& parts, double fuzzy, double seconds, bool parallel) {
+  FuseStep out;
   try {
     BOPAlgo_CellsBuilder cells;
     TopTools_ListOfShape args;
     for (const auto& p : parts) args.Append(p);
     cells.SetArguments(args);
-    cells.SetRunParallel(true);
+    cells.SetRunParallel(parallel);
     cells.SetNonDestructive(true);
     cells.SetUseOBB(true);
     if (fuzzy > 0) cells.SetFuzzyValue(fuzzy);
@@ -170,6 +164,12 @@ Step fuse(const std::vector<TopoDS_Shape>& parts, double fuzzy, double seconds) 
     out.failure = std::string("the general fuse failed: ") + e.GetMessageString();
   }
   return out;
+}
+
+// fuse_here in a child process, ended at `seconds` whether or not the fuse
+// listens (geometry/isolated_fuse.cpp).
+FuseStep fuse(const std::vector<TopoDS_Shape>& parts, double fuzzy, double seconds) {
+  return fuse_in_child(parts, seconds, [&](bool parallel) { return fuse_here(parts, fuzzy, seconds, parallel); });
 }
 
 // The component healed by ShapeFix (tolerances, wires, orientation), with
@@ -220,7 +220,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
   // All at once first (one fuse is cheaper than a chain of them), within
   // three quarters of the budget; one at a time when that fails.
   if (progress) progress("uniting " + std::to_string(solids.size()) + " components at once");
-  if (Step all = fuse(solids, 0.0, 0.75 * deadline.remaining()); !all.shape.IsNull()) {
+  if (FuseStep all = fuse(solids, 0.0, 0.75 * deadline.remaining()); !all.shape.IsNull()) {
     for (const auto& [from, to] : all.pieces) follow(from, to);
     for (int k : component) info.components[k].route = "B-rep union";
     info.pocket_faces_removed = all.pocket_faces;
@@ -249,7 +249,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
         if (progress) progress("uniting component " + std::to_string(component[k] + 1));
         // Each component gets an equal share of what is left, at least half a second.
         const double budget = std::min(deadline.remaining(), std::max(0.5, deadline.remaining() / (left + 1)));
-        Step step;
+        FuseStep step;
         std::vector<std::pair<TopoDS_Face, TopoDS_Face>> healing;
         struct Route {
           const char* name;
