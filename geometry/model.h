@@ -32,10 +32,10 @@ struct LoadOptions {
   bool sew = true;                  // sew faces that touch so they share curves
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
   bool unite = true;                // repair components and fuse the closed ones (geometry/prepare.h)
+  FlowDomainOptions domain;
   double union_seconds = 0;         // the union's wall-time budget; 0: union_budget's default
   ProgressSink progress;            // told which component is being united
   bool describe_only = false;       // repair but no union (what --info needs to describe the file)
-  FlowDomainOptions domain;
 };
 
 // What the flow-domain step built (all zero when none was asked for).
