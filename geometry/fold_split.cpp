@@ -30,6 +30,7 @@ namespace {
 constexpr int kSamples = 24;          // along each knot line
 constexpr double kFoldCos = 0.5;      // normals more than 60 deg apart across the band
 constexpr double kJump = 3.0;        // parametric speed ratio across a knot line
+constexpr double kStripBands = 20;   // narrowest strip a jump split may leave, in fold bands (10 default h_min)
 constexpr int kRounds = 3;            // divisions tried, each without the faces the last one broke
 
 // Unit normal of s at (u, v); false where it is undefined.
@@ -43,7 +44,7 @@ bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
   return true;
 }
 
-// True when, somewhere in [lo, hi] of the other parameter, the knot line
+// How strongly, somewhere in [lo, hi] of the other parameter, the knot line
 // `along_u ? u = t : v = t` is a fold or a jump:
 //  - fold: the surface turns over within `band` (model units) on either side
 //    (a sharp or nearly sharp trailing edge, a crease), narrower than any
@@ -52,9 +53,10 @@ bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
 //    from one side to the other, along most of the line. A front in uv sizes its triangles by the
 //    metric where it stands; across such a line the same uv step is several
 //    times longer in space, and triangles straddling it fold over.
-bool splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo, double hi, double t_lo,
+double splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo, double hi, double t_lo,
               double t_hi, double band) {
   std::vector<double> ratios;
+  double fold = 0;
   for (int j = 0; j <= kSamples; ++j) {
     const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
     double side[2], speed[2];
@@ -75,13 +77,55 @@ bool splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo, 
     gp_Dir n0, n1;
     const bool ok = along_u ? normal_at(s, side[0], w, n0) && normal_at(s, side[1], w, n1)
                             : normal_at(s, w, side[0], n0) && normal_at(s, w, side[1], n1);
-    if (ok && n0.Dot(n1) < kFoldCos) return true;
+    if (ok && n0.Dot(n1) < kFoldCos) fold = std::max(fold, 1 - n0.Dot(n1));
   }
+  if (fold > 0) return 2 + fold;
   // A jump along most of the line (the median: a pole at one end of it has
   // any ratio at all).
-  if (ratios.empty()) return false;
+  if (ratios.empty()) return 0;
   std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  return ratios[ratios.size() / 2] > kJump;
+  return ratios[ratios.size() / 2] > kJump ? 1 : 0;
+}
+
+// Median distance in space between the iso-lines t_a and t_b (u = t when
+// along_u), over the other parameter's range [lo, hi]: the width of the strip
+// a split between them would leave.
+double strip_width(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi) {
+  std::vector<double> d;
+  for (int j = 0; j <= kSamples / 3; ++j) {
+    const double w = lo + (hi - lo) * (j + 0.5) / (kSamples / 3 + 1);
+    d.push_back((along_u ? s.Value(t_a, w) : s.Value(w, t_a)).Distance(along_u ? s.Value(t_b, w) : s.Value(w, t_b)));
+  }
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+// Knot values that split [t0, t1] (with their strength: 1 a jump, 2 and
+// more a fold, the sharper the more). A strip narrower than `min_width`
+// meshes into triangles thinner than the elements: of the two lines that
+// bound it, the weaker goes (a jump before a fold; of folds close together,
+// as on a leading edge of small radius where every knot turns the normal,
+// the sharpest stays). A fold next to the face's border stays.
+std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std::vector<std::pair<double, double>> cand,
+                                double t0, double t1, double lo, double hi, double min_width) {
+  for (bool dropped = true; dropped && !cand.empty();) {
+    dropped = false;
+    double narrowest = min_width;
+    size_t drop = cand.size();
+    for (size_t i = 0; i <= cand.size(); ++i) {  // strip i lies between line i-1 and line i
+      const double a = i == 0 ? t0 : cand[i - 1].first, b = i == cand.size() ? t1 : cand[i].first;
+      const double lower = i == 0 ? cand[0].second : i == cand.size() ? cand[i - 1].second
+                                                                       : std::min(cand[i - 1].second, cand[i].second);
+      const size_t weaker = i == 0 ? 0 : i == cand.size() ? i - 1 : (cand[i - 1].second <= cand[i].second ? i - 1 : i);
+      if ((i == 0 || i == cand.size()) && lower >= 2) continue;  // a fold by the border
+      const double w = strip_width(s, along_u, a, b, lo, hi);
+      if (w < narrowest) narrowest = w, drop = weaker;
+    }
+    if (drop < cand.size()) cand.erase(cand.begin() + drop), dropped = true;
+  }
+  std::vector<double> out;
+  for (const auto& c : cand) out.push_back(c.first);
+  return out;
 }
 
 // Split values of one face's surface: its C0 knots (multiplicity at least the
@@ -99,16 +143,19 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
     const double u0 = myUSplitValues->Value(1), u1 = myUSplitValues->Value(myUSplitValues->Length());
     const double v0 = myVSplitValues->Value(1), v1 = myVSplitValues->Value(myVSplitValues->Length());
     const double eps_u = 1e-9 * std::max(u1 - u0, 1e-300), eps_v = 1e-9 * std::max(v1 - v0, 1e-300);
+    std::vector<std::pair<double, double>> cand_u, cand_v;
     for (int k = 2; k < b->NbUKnots(); ++k) {
       const double t = b->UKnot(k);
       if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u) continue;
-      if (splits_at(*b, true, t, v0, v1, u0, u1, band_)) insert(myUSplitValues, t);
+      if (const double why = splits_at(*b, true, t, v0, v1, u0, u1, band_); why > 0) cand_u.push_back({t, why});
     }
     for (int k = 2; k < b->NbVKnots(); ++k) {
       const double t = b->VKnot(k);
       if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v) continue;
-      if (splits_at(*b, false, t, u0, u1, v0, v1, band_)) insert(myVSplitValues, t);
+      if (const double why = splits_at(*b, false, t, u0, u1, v0, v1, band_); why > 0) cand_v.push_back({t, why});
     }
+    for (double t : kept_splits(*b, true, cand_u, u0, u1, v0, v1, kStripBands * band_)) insert(myUSplitValues, t);
+    for (double t : kept_splits(*b, false, cand_v, v0, v1, u0, u1, kStripBands * band_)) insert(myVSplitValues, t);
     if (myUSplitValues->Length() > 2 || myVSplitValues->Length() > 2)
       myStatus |= ShapeExtend::EncodeStatus(ShapeExtend_DONE1);
   }
