@@ -43,7 +43,9 @@ target_link_libraries(sizemesh::cgns INTERFACE ${CGNS_LIBRARY})
 # of the self-intersection check when floating point cannot decide.
 find_package(Boost 1.74 REQUIRED)
 
-# Catch2 v2 for the tests; CGAL (headers) as an independent exact checker of
+# Catch2 v2 for the tests. CGAL (headers, GMP): the mesh-level union of
+# components the B-rep union cannot take (exact corefinement, isotropic
+# remeshing of the cut's band), and an independent exact checker of
 # self-intersections in the tests.
 find_package(Catch2 2 REQUIRED)
 find_package(CGAL REQUIRED)

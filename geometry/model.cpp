@@ -351,6 +351,18 @@ Model::~Model() = default;
 const ModelInfo& Model::info() const { return impl_->info; }
 std::string Model::face_name(int face) const { return impl_->face_names.at(face - 1); }
 int Model::source_face(int face) const { return impl_->source_face.at(face - 1); }
+
+void Model::record_mesh_union(int component, const std::string& failure) {
+  Preparation& p = impl_->info.preparation;
+  Component& c = p.components.at(component - 1);
+  if (!failure.empty()) {
+    c.route += "; at mesh level: " + failure;
+    return;
+  }
+  c.route = "mesh-level union";
+  p.not_united.erase(std::remove(p.not_united.begin(), p.not_united.end(), component), p.not_united.end());
+  ++p.united_at_mesh_level;
+}
 Boundary Model::boundary(int face) const {
   return impl_->boundary.empty() ? Boundary::Wall : impl_->boundary.at(face - 1);
 }

@@ -36,6 +36,10 @@ struct LoadOptions {
   double union_seconds = 0;         // the union's wall-time budget; 0: union_budget's default
   ProgressSink progress;            // told which component is being united
   bool describe_only = false;       // repair but no union (what --info needs to describe the file)
+  // Components (1-based, as --info numbers them) united as meshes without a
+  // B-rep union tried (mesher/mesh_union.h); all of them when mesh_union_all.
+  std::vector<int> mesh_union;
+  bool mesh_union_all = false;
 };
 
 // What the flow-domain step built (all zero when none was asked for).
@@ -85,6 +89,9 @@ class Model : public Geometry {
   int source_face(int face) const;
   // What the face bounds: the body, the far field or the symmetry plane.
   Boundary boundary(int face) const;
+  // Records how the mesh-level union ended for a component (1-based) the
+  // B-rep union left out: united when `failure` is empty, else why not.
+  void record_mesh_union(int component, const std::string& failure);
   // Faces (ids) of each solid; empty when the model has no solids.
   std::vector<std::vector<int>> solid_faces() const;
   // True when every non-degenerate curve bounds exactly two face sides.

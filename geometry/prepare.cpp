@@ -288,27 +288,14 @@ FaceList joined(FaceList faces, const FaceList& more) {
   return faces;
 }
 
-Repair repair_component(const FaceList& read, double tol, double component_diagonal, const HalfModelPlanes& half,
-                        int cap_axis) {
-  Repair r;
-  const FaceList faces = split_pinched(read, tol, r.split);
-  // A looser sewing may close it alone (a sewing ladder up to 1e-3 of the
-  // component's size), judged by the free curves left.
-  for (double t : {tol, 10 * tol, 100 * tol}) {
-    if (t > 1e-3 * component_diagonal && t > tol) break;
-    Sewn s = sew(faces, t);
-    if (s.free_curves == 0 && TopExp_Explorer(s.shape, TopAbs_SHELL).More()) {
-      r.closed = s.shape;
-      r.sewn = s;
-      r.kept = faces;
-      return r;
-    }
-  }
-  FaceList current = faces;
-  Sewn now = sew(current, tol);
-  // Coincident pairs: both out (the cap between two halves of one body) when
-  // that does not open the component further, else one of them (a duplicate).
-  for (const auto& [i, j] : coincident_pairs(faces, tol)) {
+// Coincident pairs of `faces` taken out of `current` (sewn as `now` at
+// tolerance t): both (the caps between two halves of one body) when that
+// does not open the component further, else one of them (a duplicate).
+// Returns the faces taken out.
+int drop_coincident(const FaceList& faces, const std::vector<std::pair<int, int>>& pairs, double t,
+                    FaceList& current, Sewn& now) {
+  int dropped = 0;
+  for (const auto& [i, j] : pairs) {
     auto without = [&](std::initializer_list<int> drop) {
       FaceList out;
       for (const auto& f : current) {
@@ -320,15 +307,43 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     };
     for (auto drop : {std::initializer_list<int>{i, j}, std::initializer_list<int>{j}}) {
       FaceList trial = without(drop);
-      Sewn s = sew(trial, tol);
+      Sewn s = sew(trial, t);
       if (s.free_curves <= now.free_curves) {
-        r.duplicates += static_cast<int>(drop.size());
+        dropped += static_cast<int>(drop.size());
         current = trial;
         now = s;
         break;
       }
     }
   }
+  return dropped;
+}
+
+Repair repair_component(const FaceList& read, double tol, double component_diagonal, const HalfModelPlanes& half,
+                        int cap_axis) {
+  Repair r;
+  const FaceList faces = split_pinched(read, tol, r.split);
+  const auto pairs = coincident_pairs(faces, tol);
+  // A looser sewing may close it alone (a sewing ladder up to 1e-3 of the
+  // component's size), judged by the free curves left once coincident faces
+  // (two halves' root caps, back to back) are out: kept, they would lie
+  // inside the closed body.
+  for (double t : {tol, 10 * tol, 100 * tol}) {
+    if (t > 1e-3 * component_diagonal && t > tol) break;
+    FaceList current = faces;
+    Sewn s = sew(current, t);
+    const int dropped = pairs.empty() ? 0 : drop_coincident(faces, pairs, t, current, s);
+    if (s.free_curves == 0 && TopExp_Explorer(s.shape, TopAbs_SHELL).More()) {
+      r.closed = s.shape;
+      r.sewn = s;
+      r.kept = current;
+      r.duplicates = dropped;
+      return r;
+    }
+  }
+  FaceList current = faces;
+  Sewn now = sew(current, tol);
+  r.duplicates = drop_coincident(faces, pairs, tol, current, now);
   // Faces on free curves, best first, while each removal closes more. What
   // is taken out stays under half the component's area: an internal plane or
   // a cap, never the skin that bounds the body.
@@ -575,6 +590,28 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);
   }
 
+  // Components the options send straight to the mesh-level union.
+  std::vector<TopoDS_Shape> apart;
+  for (int k : options.mesh_union)
+    if (k < 1 || k > static_cast<int>(info.components.size()))
+      throw Error("--mesh-union " + std::to_string(k) + ": the model has " + std::to_string(info.components.size()) +
+                  " components (sizemesh --info lists them)");
+  if (!options.describe_only) {
+    std::vector<TopoDS_Shape> kept;
+    std::vector<int> kept_component;
+    for (size_t i = 0; i < solids.size(); ++i) {
+      const int k = solid_component[i];
+      if (options.mesh_union_all || std::count(options.mesh_union.begin(), options.mesh_union.end(), k + 1)) {
+        info.components[k].route = "not united: --mesh-union asks for a union of meshes";
+        info.not_united.push_back(k + 1);
+        apart.push_back(solids[i]);
+      } else {
+        kept.push_back(solids[i]), kept_component.push_back(k);
+      }
+    }
+    solids.swap(kept);
+    solid_component.swap(kept_component);
+  }
   if (options.describe_only) {
     info.union_skipped = true;
   } else if (solids.size() >= 2) {
@@ -584,6 +621,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   } else if (solids.size() == 1) {
     info.components[solid_component[0]].route = "alone: the only closed component";
   }
+  solids.insert(solids.end(), apart.begin(), apart.end());
   TopoDS_Shape result;
   if (!options.describe_only && !sheets.empty() && solids.size() + sheets.size() >= 2) {
     if (options.progress) options.progress("imprinting " + std::to_string(sheets.size()) + " open components");

@@ -25,8 +25,11 @@ struct Component {
   // meshed where it lies).
   std::string role;
   // How it joined the wetted surface: "B-rep union" (also ", fuzzy" and
-  // ", healed"), "alone: ..." (it touches no other component), "imprinted"
-  // (a sheet cut where it meets the bodies), or "not united: <why>" (meshed
+  // ", healed"), "the base others join" (no other component joined it as a
+  // B-rep; others may at mesh level), "alone: ..." (it touches no other
+  // component), "imprinted"
+  // (a sheet cut where it meets the bodies), "mesh-level union" (its mesh cut
+  // with the rest's, mesher/mesh_union.h), or "not united: <why>" (meshed
   // where it lies; the run ends with exit 3).
   std::string route;
   int faces_removed = 0;  // duplicate or internal faces taken out by the repair
@@ -50,6 +53,7 @@ struct Preparation {
   int sheet_pieces_dropped = 0;       // pieces of them inside a body
   std::string fallback;               // why the union was not kept; empty when it was or was not needed
   std::vector<int> not_united;        // components (1-based) left where they lie: the surface is not one
+  int united_at_mesh_level = 0;       // components the B-rep union left out, united as meshes
   double seconds_budget = 0;          // the union's time budget
   int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element
   int faces_before = 0, faces_after = 0;

@@ -285,7 +285,10 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
         ++members;
       }
     }
-    info.components[component[seed]].route = members > 1 ? "B-rep union" : "alone: touches no other component";
+    bool touches = false;
+    for (size_t k = 0; k < solids.size(); ++k) touches = touches || (k != seed && !box[seed].IsOut(box[k]));
+    info.components[component[seed]].route =
+        members > 1 ? "B-rep union" : touches ? "the base others join" : "alone: touches no other component";
     if (members > 1) info.solids_fused += members;
     for (TopExp_Explorer ex(group, TopAbs_SOLID); ex.More(); ex.Next()) builder.Add(out, ex.Current());
   }

@@ -1,6 +1,7 @@
 #include "src/cli_options.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 
 #include <cmath>
@@ -44,6 +45,18 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
                  "wall-time budget of the union of components (default 4 s per component, at least 12); an attempt "
                  "past it is abandoned and the components it leaves out are named (exit 3)")
       ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--mesh-union", cl.mesh_union,
+                 "unite these components (numbers as --info lists them, comma-separated, or 'all') as meshes: their "
+                 "triangles are cut with the rest's and the cut nodes put on both CAD surfaces; no B-rep union is tried")
+      ->delimiter(',')
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v == "all") return {};
+            char* end = nullptr;
+            const long k = std::strtol(v.c_str(), &end, 10);
+            return !v.empty() && *end == 0 && k >= 1 && k <= 1000000 ? "" : "'" + v + "' is not a component number or 'all'";
+          },
+          "NUMBERS|all"));
   app.add_option("--sew-tolerance", cl.options.load.sewing_tolerance_rel, "sewing tolerance relative to the bounding-box diagonal")
       ->capture_default_str()->check(positive);
   app.add_option("--deflection", cl.options.tessellation.deflection_rel,
@@ -96,6 +109,10 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
   o.load.domain.farfield = cl.farfield == "sphere" ? FF::Sphere : cl.farfield == "box" ? FF::Box : FF::None;
   o.load.domain.symmetry_axis = cl.symmetry == "none" ? -1 : cl.symmetry[0] - 'x';
   o.load.domain.symmetry_at_given = cl.symmetry_at->count() > 0;
+  o.load.mesh_union.clear();
+  for (const std::string& v : cl.mesh_union)
+    if (v == "all") o.load.mesh_union_all = true;
+    else o.load.mesh_union.push_back(std::stoi(v));
   if (o.verbose) {
     // The union's progress, once loading has taken more than a second.
     const auto start = std::chrono::steady_clock::now();

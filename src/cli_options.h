@@ -20,6 +20,7 @@ struct RunCommandLine {
   bool info_only = false;
   std::map<std::string, std::string> words;  // choice options: the word given
   std::string farfield = "none", symmetry = "none", smoother = "exact";
+  std::vector<std::string> mesh_union;  // component numbers, or "all"
   CLI::Option* symmetry_at = nullptr;
 };
 

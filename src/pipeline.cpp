@@ -4,8 +4,10 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <unordered_map>
 
 #include "mesher/mesh_surface.h"
+#include "mesher/mesh_union.h"
 #include "mesher/quality.h"
 #include "mesher/target_sizes.h"
 #include "sizing/options.h"
@@ -94,6 +96,8 @@ void size_domain_faces(const Model& model, SizingParams& params) {
     }
 }
 
+}  // namespace
+
 // One line naming the components the union left out (the run ends with exit 3).
 void warn_not_united(const Preparation& p, const WarningSink& warn) {
   if (p.not_united.empty()) return;
@@ -106,6 +110,30 @@ void warn_not_united(const Preparation& p, const WarningSink& warn) {
   }
   msg << " could not be united with the rest: meshed where they lie, so the surface is not one closed body (exit 3)";
   warn(msg.str());
+}
+
+namespace {
+
+// The components the B-rep union left out, united with the rest as meshes
+// (mesher/mesh_union.h); what it cannot take stays apart (exit 3).
+void unite_at_mesh_level(RunResult& r) {
+  Model& model = *r.model;
+  const Preparation& p = model.info().preparation;
+  if (p.not_united.empty()) return;
+  const std::vector<int> left = p.not_united;
+  if (model.fluid_side() < 0) {
+    for (int k : left) model.record_mesh_union(k, "not tried inside a flow domain");
+    return;
+  }
+  std::unordered_map<int, int> component_of;  // sewn face -> index in `left`
+  for (size_t i = 0; i < left.size(); ++i)
+    for (int f : p.components[left[i] - 1].face_ids) component_of[f] = static_cast<int>(i);
+  std::vector<std::vector<int>> parts(left.size());
+  for (int f = 1; f <= model.num_faces(); ++f)
+    if (const auto it = component_of.find(model.source_face(f)); it != component_of.end())
+      parts[it->second].push_back(f);
+  r.report.mesh_union = unite_meshes(r.mesh, model, *r.query, parts);
+  for (size_t i = 0; i < left.size(); ++i) model.record_mesh_union(left[i], r.report.mesh_union.failures[i]);
 }
 
 void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning: " << line << "\n"; }
@@ -136,7 +164,6 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
   const Model& model = *r->model;
   r->clock.lap("prepare");
   const ModelInfo& info = model.info();
-  warn_not_united(info.preparation, warn);
   if (const int a = info.preparation.half_model_axis; a >= 0 && info.domain.symmetry_axis != a)
     warn(std::string("a half model, open on the plane ") + static_cast<char>('x' + a) +
          " = 0: its mesh has boundary edges there; --symmetry " + static_cast<char>('x' + a) +
@@ -189,6 +216,11 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   meshing.on_face_done = [&r](int done, int total) { r.clock.faces(done, total); };
   r.mesh = mesh_surface(model, *r.query, meshing);                          // mesher/ (4.1)
   r.clock.lap("meshing");
+  if (!model.info().preparation.not_united.empty()) {
+    unite_at_mesh_level(r);                                                  // mesher/mesh_union
+    r.clock.lap("mesh union");
+  }
+  warn_not_united(model.info().preparation, warn);
   r.report.queries = r.query->stats();
   r.report.mesh = &r.mesh;
   r.report.quality = mesh_quality(r.mesh, model, *r.query);
@@ -217,6 +249,7 @@ int run(const RunOptions& o) {
     else print_to_stderr(line);
   };
   std::unique_ptr<RunResult> r = size_model(o, warn);
+  if (o.output.empty()) warn_not_united(r->model->info().preparation, warn);
   if (!o.background.empty()) write_background_sizes(o.background, r->bg, r->sizes);
   if (!o.output.empty()) {
     meshing = true;

@@ -84,6 +84,9 @@ std::unique_ptr<RunResult> size_model(const RunOptions& options, const WarningSi
 // Throws Error when the size map asks for more than --max-triangles.
 void mesh_model(RunResult& r, const RunOptions& options, const WarningSink& warn);
 
+// One warning line naming the components left out of the union, if any.
+void warn_not_united(const Preparation& p, const WarningSink& warn);
+
 // The sizemesh command: both stages and every file asked for. Returns the
 // exit code (kPartial when some faces could not be meshed; the rest is still
 // written).

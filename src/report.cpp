@@ -37,6 +37,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"solids_fused", prep.solids_fused},
                       {"fallback", prep.fallback},
                       {"not_united", prep.not_united},
+                      {"united_at_mesh_level", prep.united_at_mesh_level},
                       {"caps_added", prep.caps_added},
                       {"half_model_axis", prep.half_model_axis},
                       {"union_seconds", prep.seconds_budget},
@@ -116,6 +117,14 @@ nlohmann::json report_json(const RunReport& r) {
                    {"faces_relaxed", st.faces_relaxed},
                    {"faces_lenient", st.faces_lenient},
                    {"faces_filled", st.faces_filled}};
+    j["mesh_union"] = {{"united", r.mesh_union.united},
+                       {"failed", std::count_if(r.mesh_union.failures.begin(), r.mesh_union.failures.end(),
+                                                [](const std::string& f) { return !f.empty(); })},
+                       {"rest_pieces_apart", r.mesh_union.rest_pieces_apart},
+                       {"junction_nodes", r.mesh_union.junction_nodes},
+                       {"junction_nodes_off_surface", r.mesh_union.junction_nodes_off},
+                       {"band_triangles", r.mesh_union.band_triangles},
+                       {"max_junction_gap", r.mesh_union.max_junction_gap}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},
@@ -147,6 +156,11 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
       << q.local_self_intersections << " within a face or across a shared curve)\n"
       << "size queries: " << r.queries.queries << ", " << r.queries.mean_visited()
       << " background triangles visited on average, " << r.queries.fallbacks << " fallbacks\n";
+  if (r.mesh_union.united > 0)
+    out << "mesh-level union: " << r.mesh_union.united << " components, " << r.mesh_union.junction_nodes
+        << " junction nodes (" << r.mesh_union.junction_nodes_off << " left on the meshes; at most "
+        << r.mesh_union.max_junction_gap << " from their CAD surfaces), "
+        << r.mesh_union.band_triangles << " triangles remeshed along the cuts\n";
   out << "time:";
   for (const auto& [stage, s] : r.seconds) out << " " << stage << " " << s << " s;";
   out << "\n";

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/model.h"
+#include "mesher/mesh_union.h"
 #include "mesher/quality.h"
 #include "mesher/surface_mesh.h"
 #include "sizing/refine_background.h"
@@ -33,6 +34,7 @@ struct RunReport {
   // as shares of the triangles and of the area: how much h_min drives the mesh.
   double at_h_min_share = 0, at_h_min_area_share = 0;
   QueryStats queries;
+  MeshUnionResult mesh_union;  // components united at mesh level (none when every union was a B-rep one)
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
 };
 

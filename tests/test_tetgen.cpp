@@ -45,7 +45,7 @@ long ascii_stl(const std::string& binary, const std::string& ascii) {
 TEST_CASE("tetgen builds a volume mesh inside the shared aircraft's wetted surfaces", "[models]") {
   INFO("tetgen is installed by bash cmake/setup.sh (Debian package tetgen)");
   REQUIRE(std::system("command -v tetgen >/dev/null 2>&1") == 0);
-  for (const char* file : {"f16_openvsp.stp", "manta2_openvsp.stp"}) {
+  for (const char* file : {"f16_openvsp.stp", "manta2_openvsp.stp", "transport_wbnp_openvsp.stp"}) {
     SECTION(file) {
       const fs::path dir = fs::temp_directory_path() / ("sizemesh_tetgen_" + std::to_string(::getpid()));
       fs::create_directories(dir);

@@ -86,29 +86,56 @@ TEST_CASE("a wing whose tips are slits and that carries its planform plane close
   CHECK(p.half_model_axis == -1);
 }
 
-TEST_CASE("components the union cannot take within its budget are named and the run ends with exit 3") {
+TEST_CASE("components the B-rep union cannot take within its budget are united at mesh level") {
   // The F-16's union takes seconds; a budget of a tenth of one leaves every
-  // attachment out. The components are still meshed where they lie.
+  // attachment out of the B-rep union. They are united with the fuselage as
+  // meshes: one closed surface, nothing crossing, exit 0.
   const test::TempDir dir("union_budget");
   const auto j = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q --union-seconds 0.1 -o " +
                                            (dir / "f16.vtu"),
-                                       (dir / "r.json"), 3);
+                                       (dir / "r.json"), 0);
   const auto& prep = j["preparation"];
-  REQUIRE(prep["not_united"].size() >= 1);
-  int not_united = 0;
+  CHECK(prep["not_united"].empty());
+  int mesh_level = 0;
   for (const auto& c : prep["components"]) {
     const std::string route = c["route"];
-    not_united += route.rfind("not united: ", 0) == 0;
+    mesh_level += route == "mesh-level union";
+    CHECK(route.rfind("not united", 0) == std::string::npos);
   }
-  CHECK(not_united == static_cast<int>(prep["not_united"].size()));
-  const auto r = test::run_sizemesh(test::model_path("f16_openvsp.stp") + " -q --union-seconds 0.1 -o " +
-                                    (dir / "f16.vtu"));
-  CHECK(r.status == 3);
-  CHECK(r.err.find("could not be united with the rest") != std::string::npos);
-  // Without a budget to run out, the same model unites whole (exit 0).
+  CHECK(mesh_level >= 5);
+  CHECK(prep["united_at_mesh_level"] == mesh_level);
+  CHECK(j["mesh_union"]["united"] == mesh_level);
+  CHECK(j["mesh_union"]["junction_nodes"] > 500);
+  const auto& m = j["mesh"];
+  CHECK(m["boundary_edges"] == 0);
+  CHECK(m["nonmanifold_edges"] == 0);
+  CHECK(m["orientation_conflicts"] == 0);
+  CHECK(m["self_intersecting_pairs"] == 0);
+  CHECK(m["failed_faces"].empty());
+  // Without a budget to run out, the same model unites whole as a B-rep.
   const auto whole = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q", (dir / "w.json"), 0);
   CHECK(whole["preparation"]["not_united"].empty());
   for (const auto& c : whole["preparation"]["components"]) CHECK(c["route"] == "B-rep union");
+}
+
+TEST_CASE("a component the mesh-union option names is united at mesh level while the others take the B-rep route") {
+  const test::TempDir dir("union_mixed");
+  const auto j = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q --mesh-union 5 -o " +
+                                           (dir / "f16.vtu"),
+                                       (dir / "r.json"), 0);
+  const auto& comps = j["preparation"]["components"];
+  REQUIRE(comps.size() == 7);
+  for (size_t k = 0; k < comps.size(); ++k) CHECK(comps[k]["route"] == (k == 4 ? "mesh-level union" : "B-rep union"));
+  CHECK(j["mesh_union"]["united"] == 1);
+  CHECK(j["mesh"]["boundary_edges"] == 0);
+  CHECK(j["mesh"]["nonmanifold_edges"] == 0);
+  CHECK(j["mesh"]["self_intersecting_pairs"] == 0);
+  // A word is refused; so is a component number the model does not have.
+  const auto word = test::run_sizemesh(test::model_path("f16_openvsp.stp") + " -q --mesh-union wing");
+  CHECK(word.status == 2);
+  const auto beyond = test::run_sizemesh(test::model_path("f16_openvsp.stp") + " -q --mesh-union 8 -o " + (dir / "x.vtu"));
+  CHECK(beyond.status == 1);
+  CHECK(beyond.err == "sizemesh: error: --mesh-union 8: the model has 7 components (sizemesh --info lists them)\n");
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {

@@ -1,0 +1,599 @@
+#include "mesher/mesh_union.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include "mesher/self_intersection.h"
+
+namespace sizemesh {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using VI = Mesh::Vertex_index;
+using FI = Mesh::Face_index;
+using EI = Mesh::Edge_index;
+
+Vec3 vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+Point point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
+
+// A CGAL mesh that remembers, per triangle, the source triangle and CAD face
+// and, per vertex, the source node (-1 for a node the cut or the remesh made).
+struct Tracked {
+  Mesh m;
+  Mesh::Property_map<FI, int> tri, face;
+  Mesh::Property_map<VI, int> node;
+  Mesh::Property_map<EI, bool> cut;  // on a junction curve
+  Tracked() { attach(); }
+  Tracked(const Tracked& o) : m(o.m) { attach(); }
+  Tracked& operator=(const Tracked&) = delete;
+  void attach() {
+    tri = m.add_property_map<FI, int>("f:tri", -1).first;
+    face = m.add_property_map<FI, int>("f:cad", 0).first;
+    node = m.add_property_map<VI, int>("v:node", -1).first;
+    cut = m.add_property_map<EI, bool>("e:cut", false).first;
+  }
+};
+
+// The triangles `ids` of `s` as a tracked mesh; false when they are not a
+// manifold surface.
+bool build(const SurfaceMesh& s, const std::vector<int>& ids, Tracked& t) {
+  std::unordered_map<int, VI> vertex;
+  for (int id : ids)
+    for (int n : s.tris[id])
+      if (vertex.emplace(n, VI()).second) {
+        const VI v = t.m.add_vertex(point(s.xyz[n]));
+        vertex[n] = v;
+        t.node[v] = n;
+      }
+  for (int id : ids) {
+    const auto& tr = s.tris[id];
+    const FI f = t.m.add_face(vertex[tr[0]], vertex[tr[1]], vertex[tr[2]]);
+    if (f == Mesh::null_face()) return false;
+    t.tri[f] = id;
+    t.face[f] = s.tri_face[id];
+  }
+  return true;
+}
+
+// Why `t` cannot take part in a union of volumes; empty when it can (it is
+// then oriented outward).
+std::string unfit(Tracked& t) {
+  if (t.m.is_empty()) return "it has no triangles";
+  if (!CGAL::is_closed(t.m)) return "its mesh is not closed";
+  if (PMP::does_self_intersect(t.m)) return "its mesh intersects itself";
+  if (!PMP::does_bound_a_volume(t.m)) PMP::orient_to_bound_a_volume(t.m);
+  if (!PMP::does_bound_a_volume(t.m)) return "its mesh does not bound a volume";
+  return {};
+}
+
+// Carries the source triangle, CAD face and node through the corefinement.
+struct FollowState {
+  Tracked* a = nullptr;
+  Tracked* b = nullptr;
+  int tri = -1, face = 0;
+  Tracked& of(const Mesh& m) { return &m == &a->m ? *a : *b; }
+};
+struct Follow : PMP::Corefinement::Default_visitor<Mesh> {
+  std::shared_ptr<FollowState> s = std::make_shared<FollowState>();
+  void before_subface_creations(FI f, Mesh& m) {
+    Tracked& t = s->of(m);
+    s->tri = t.tri[f];
+    s->face = t.face[f];
+  }
+  void after_subface_created(FI f, Mesh& m) {
+    Tracked& t = s->of(m);
+    t.tri[f] = s->tri;
+    t.face[f] = s->face;
+  }
+  void after_face_copy(FI from, const Mesh& ms, FI to, Mesh& mt) {
+    Tracked &a = s->of(ms), &b = s->of(mt);
+    b.tri[to] = a.tri[from];
+    b.face[to] = a.face[from];
+  }
+  void after_vertex_copy(VI from, const Mesh& ms, VI to, Mesh& mt) { s->of(mt).node[to] = s->of(ms).node[from]; }
+};
+
+// Closest point of triangle (a, b, c) to p, as barycentric weights.
+Eigen::Vector3d closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+
+// The point nearest x on every one of `faces` (a surface, a curve where two
+// meet, a point where three do): Newton on the tangent planes, each step the
+// smallest move that puts x on all of them. uv holds a start per face and
+// ends as the point's uv there. False when a projection fails or the point
+// would move further than `reach`.
+bool snap(const Geometry& g, const std::vector<int>& faces, std::vector<Vec2>& uv, Vec3& x, double reach,
+          double tol) {
+  const Vec3 start = x;
+  const size_t k = faces.size();
+  for (int it = 0; it < 12; ++it) {
+    Eigen::MatrixXd n(k, 3);
+    Eigen::VectorXd d(k);
+    for (size_t i = 0; i < k; ++i) {
+      if (!g.project_to_face(faces[i], x, uv[i])) return false;
+      const SurfaceD1 s = g.eval_face(faces[i], uv[i]);
+      Vec3 normal = s.du.cross(s.dv);
+      if (!(normal.norm() > 0)) return false;
+      normal.normalize();
+      n.row(i) = normal.transpose();
+      d(i) = normal.dot(s.p);
+    }
+    // y = x - N^+ (N x - d): on every tangent plane, nearest to x.
+    const Eigen::VectorXd r = n * x - d;
+    const Vec3 step = n.completeOrthogonalDecomposition().solve(r);
+    x -= step;
+    if ((x - start).norm() > reach || !std::isfinite(x.x())) return false;
+    if (step.norm() <= tol) {
+      for (size_t i = 0; i < k; ++i)
+        if (!g.project_to_face(faces[i], x, uv[i])) return false;
+      return true;
+    }
+  }
+  return false;
+}
+
+// The triangles `ids` in pieces connected across edges: the closed ones
+// (every edge used twice), largest first, and the triangles of open ones.
+std::vector<std::vector<int>> closed_pieces(const SurfaceMesh& s, const std::vector<int>& ids, std::vector<int>& open) {
+  std::vector<int> parent(ids.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::pair<int, int>, std::vector<int>> edges;
+  for (size_t i = 0; i < ids.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.tris[ids[i]][k], b = s.tris[ids[i]][(k + 1) % 3];
+      edges[std::minmax(a, b)].push_back(static_cast<int>(i));
+    }
+  std::vector<bool> open_root(ids.size(), false);
+  for (const auto& [e, uses] : edges)
+    for (size_t j = 1; j < uses.size(); ++j) parent[find(uses[j])] = find(uses[0]);
+  for (const auto& [e, uses] : edges)
+    if (uses.size() != 2) open_root[find(uses[0])] = true;
+  std::map<int, std::vector<int>> by_root;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int root = find(static_cast<int>(i));
+    if (open_root[root]) open.push_back(ids[i]);
+    else by_root[root].push_back(ids[i]);
+  }
+  std::vector<std::vector<int>> out;
+  for (auto& [root, tris] : by_root) out.push_back(std::move(tris));
+  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.size() > y.size(); });
+  return out;
+}
+
+// uv of node n on face f, from the first triangle of f that uses it.
+struct NodeUV {
+  std::unordered_map<uint64_t, Vec2> at;
+  static uint64_t key(int n, int f) { return (uint64_t(uint32_t(n)) << 32) | uint32_t(f); }
+  explicit NodeUV(const SurfaceMesh& s) {
+    for (size_t t = 0; t < s.tris.size(); ++t)
+      for (int k = 0; k < 3; ++k) at.emplace(key(s.tris[t][k], s.tri_face[t]), s.tri_uv[t][k]);
+  }
+  const Vec2* find(int n, int f) const {
+    const auto it = at.find(key(n, f));
+    return it == at.end() ? nullptr : &it->second;
+  }
+};
+
+// The bands along the cuts (the triangles touching a cut node and one ring
+// more) remeshed to the size map's size there: CGAL's isotropic remeshing,
+// the cut curves and CAD face borders kept as constraints (their nodes slide
+// along them), B-rep points and nodes where three faces meet fixed. One call
+// per size class (a factor 1.25 apart), each over every band of that class.
+void remesh_bands(Tracked& t, const SurfaceMesh& s, const std::vector<double>& node_h,
+                  std::map<int, std::set<int>>& near_cut, MeshUnionResult& out) {
+  Mesh& m = t.m;
+  std::set<VI> ring;
+  for (EI e : m.edges())
+    if (t.cut[e]) ring.insert(m.vertex(e, 0)), ring.insert(m.vertex(e, 1));
+  if (ring.empty()) return;
+  std::set<FI> band;
+  for (int step = 0; step < 2; ++step) {
+    std::set<VI> next = ring;
+    for (VI v : ring)
+      for (FI f : CGAL::faces_around_target(m.halfedge(v), m))
+        if (f != Mesh::null_face() && band.insert(f).second)
+          for (VI w : CGAL::vertices_around_face(m.halfedge(f), m)) next.insert(w);
+    ring.swap(next);
+  }
+  // Connected bands, each with the median target size of its source nodes.
+  std::map<FI, int> region;
+  std::vector<double> length;
+  for (FI seed : band) {
+    if (region.count(seed)) continue;
+    const int id = static_cast<int>(length.size());
+    std::vector<FI> stack{seed};
+    region[seed] = id;
+    std::vector<double> sizes;
+    while (!stack.empty()) {
+      const FI f = stack.back();
+      stack.pop_back();
+      for (VI v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+        if (t.node[v] >= 0 && node_h[t.node[v]] > 0) sizes.push_back(node_h[t.node[v]]);
+        for (FI g : CGAL::faces_around_target(m.halfedge(v), m))
+          if (g != Mesh::null_face() && band.count(g) && region.emplace(g, id).second) stack.push_back(g);
+      }
+    }
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    length.push_back(sizes.empty() ? 0.0 : sizes[sizes.size() / 2]);
+  }
+  auto fixed = m.add_property_map<VI, bool>("v:fixed", false).first;
+  for (FI b : band) {
+    if (t.tri[b] >= 0) near_cut[t.face[b]].insert(t.tri[b]);
+    for (VI v : CGAL::vertices_around_face(m.halfedge(b), m)) {
+      const int n = t.node[v];
+      std::set<int> faces;
+      for (FI f : CGAL::faces_around_target(m.halfedge(v), m))
+        if (f != Mesh::null_face()) faces.insert(t.face[f]);
+      fixed[v] = (n >= 0 && s.node_dim[n] == 0) || faces.size() >= 3;
+    }
+  }
+  std::map<int, std::vector<FI>> classes;  // size class -> band faces
+  for (const auto& [f, id] : region)
+    if (length[id] > 0) classes[static_cast<int>(std::floor(std::log(length[id]) / std::log(1.25)))].push_back(f);
+  for (auto& [c, faces] : classes) {
+    out.band_triangles += static_cast<int>(faces.size());
+    PMP::isotropic_remeshing(faces, std::pow(1.25, c + 0.5), m,
+                             PMP::parameters::number_of_iterations(3)
+                                 .edge_is_constrained_map(t.cut)
+                                 .vertex_is_constrained_map(fixed)
+                                 .face_patch_map(t.face)
+                                 .relax_constraints(true));
+  }
+  m.remove_property_map(fixed);
+}
+
+// Nodes put on their CAD surfaces where the surfaces graze may cross the
+// other side's facets, which stay chords: the nodes of every intersecting
+// pair that involves a moved node go back to their place on the meshes
+// (which did not intersect there), a few rounds, then every moved node does.
+void keep_apart(SurfaceMesh& r, const std::vector<Vec3>& before_snap) {
+  auto moved = [&](int t) {
+    for (int n : r.tris[t])
+      if (r.xyz[n] != before_snap[n]) return true;
+    return false;
+  };
+  for (int round = 0; round < 4; ++round) {
+    const SelfIntersections hits = find_self_intersections(r, static_cast<size_t>(-1));
+    bool any = false;
+    for (const auto& pair : hits.kept) {
+      if (!moved(pair[0]) && !moved(pair[1])) continue;
+      any = true;
+      if (round == 3) break;
+      for (int t : pair)
+        for (int n : r.tris[t]) r.xyz[n] = before_snap[n];
+    }
+    if (!any) return;
+    if (round == 3) r.xyz = before_snap;
+  }
+}
+
+}  // namespace
+
+MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
+                             const std::vector<std::vector<int>>& parts) {
+  MeshUnionResult out;
+  out.failures.assign(parts.size(), {});
+  if (parts.empty()) return out;
+  // Triangles per part; the rest is the base, its closed components united,
+  // its open ones (sheets) kept as they are.
+  std::unordered_map<int, int> part_of_face;
+  for (size_t p = 0; p < parts.size(); ++p)
+    for (int f : parts[p]) part_of_face[f] = static_cast<int>(p);
+  std::vector<std::vector<int>> part_tris(parts.size());
+  std::vector<int> rest;
+  for (size_t t = 0; t < s.tris.size(); ++t) {
+    const auto it = part_of_face.find(s.tri_face[t]);
+    (it == part_of_face.end() ? rest : part_tris[it->second]).push_back(static_cast<int>(t));
+  }
+  // The pieces to unite: the rest's closed pieces (largest first), then the
+  // parts. The rest's open pieces (sheets) and its pieces that cannot take
+  // part (a mesh that intersects itself) are kept as they are.
+  std::vector<int> aside;
+  std::vector<std::vector<int>> pieces = closed_pieces(s, rest, aside);
+  const size_t rest_pieces = pieces.size();
+  for (auto& tris : part_tris) pieces.push_back(tris);
+
+  // Target sizes at the nodes, for the band's edge length.
+  std::vector<double> node_h(s.xyz.size(), -1);
+  {
+    int hint = -1;
+    for (size_t t = 0; t < s.tris.size(); ++t) {
+      if (t > 0 && s.tri_face[t] != s.tri_face[t - 1]) hint = -1;
+      for (int k = 0; k < 3; ++k)
+        if (node_h[s.tris[t][k]] < 0) node_h[s.tris[t][k]] = h.at(s.tri_face[t], s.tri_uv[t][k], hint);
+    }
+  }
+
+  std::unique_ptr<Tracked> base;
+  std::set<int> base_nodes;
+  // Per CAD face, the source triangles near a cut: uv hints for the projection.
+  std::map<int, std::set<int>> near_cut;
+  std::vector<bool> united(pieces.size(), false);
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const bool is_part = i >= rest_pieces;
+    auto fail = [&](const std::string& why) {
+      if (is_part) out.failures[i - rest_pieces] = why;
+      else aside.insert(aside.end(), pieces[i].begin(), pieces[i].end()), ++out.rest_pieces_apart;
+    };
+    auto part = std::make_unique<Tracked>();
+    std::string why;
+    if (pieces[i].empty()) why = "it has no triangles";
+    else if (!build(s, pieces[i], *part)) why = "its mesh is not manifold";
+    for (VI v : part->m.vertices())
+      if (why.empty() && base_nodes.count(part->node[v])) why = "its mesh shares nodes with the rest";
+    if (why.empty()) why = unfit(*part);
+    if (!why.empty()) {
+      fail(why);
+      continue;
+    }
+    for (VI v : part->m.vertices()) base_nodes.insert(part->node[v]);
+    if (!base) {  // the start
+      base = std::move(part);
+      united[i] = true;
+      out.united += is_part;
+      continue;
+    }
+    auto before = std::make_unique<Tracked>(*base);
+    Follow follow;
+    follow.s->a = base.get();
+    follow.s->b = part.get();
+    auto cut_now = base->m.add_property_map<EI, bool>("e:cut_now", false).first;
+    bool ok = false;
+    try {
+      ok = PMP::corefine_and_compute_union(base->m, part->m, base->m,
+                                           PMP::parameters::visitor(follow).throw_on_self_intersection(true),
+                                           PMP::parameters::default_values(),
+                                           PMP::parameters::edge_is_constrained_map(cut_now));
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (!ok) {
+      fail("the corefinement of its mesh with the rest failed");
+      base = std::move(before);
+      continue;
+    }
+    united[i] = true;
+    out.united += is_part;
+    for (EI e : base->m.edges())
+      if (cut_now[e]) base->cut[e] = true;
+    base->m.remove_property_map(cut_now);
+  }
+  if (!base) base = std::make_unique<Tracked>();
+  remesh_bands(*base, s, node_h, near_cut, out);
+  base->m.collect_garbage();
+  Mesh& m = base->m;
+
+  // Every node the cut or the remesh made or moved goes onto its CAD faces.
+  const double diag = [&] {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& x : s.xyz) box.extend(x);
+    return box.isEmpty() ? 1.0 : box.diagonal().norm();
+  }();
+  const NodeUV node_uv(s);
+  std::map<std::pair<uint32_t, int>, Vec2> vertex_uv;  // (vertex, face) -> uv
+  std::vector<Vec3> xyz(m.number_of_vertices());
+  std::map<VI, std::vector<std::pair<int, Vec2>>> junction_faces;  // cut node -> (face, uv) on each of its surfaces
+  std::vector<bool> on_cut(m.number_of_vertices(), false);
+  for (EI e : m.edges())
+    if (base->cut[e]) on_cut[m.vertex(e, 0)] = on_cut[m.vertex(e, 1)] = true;
+  for (VI v : m.vertices()) xyz[v] = vec(m.point(v));
+  // uv on source triangle t of the point of t nearest x; `dist` its distance.
+  auto uv_on = [&](int t, const Vec3& x, double& dist) {
+    const auto& tr = s.tris[t];
+    const Eigen::Vector3d w = closest_on_triangle(x, s.xyz[tr[0]], s.xyz[tr[1]], s.xyz[tr[2]]);
+    dist = (w[0] * s.xyz[tr[0]] + w[1] * s.xyz[tr[1]] + w[2] * s.xyz[tr[2]] - x).norm();
+    return Vec2(w[0] * s.tri_uv[t][0] + w[1] * s.tri_uv[t][1] + w[2] * s.tri_uv[t][2]);
+  };
+  for (VI v : m.vertices()) {
+    const int n = base->node[v];
+    if (n >= 0 && (xyz[v] - s.xyz[n]).norm() == 0) continue;
+    std::vector<int> faces;
+    std::vector<FI> around;
+    for (FI f : CGAL::faces_around_target(m.halfedge(v), m)) {
+      if (f == Mesh::null_face()) continue;
+      around.push_back(f);
+      if (std::find(faces.begin(), faces.end(), base->face[f]) == faces.end()) faces.push_back(base->face[f]);
+    }
+    if (faces.empty() || faces.size() > 4) continue;
+    // Starts: the source triangles of the triangles around the node, else
+    // the nearest source triangle of that face near a cut, else the node's uv.
+    std::vector<Vec2> uv(faces.size());
+    bool started = true;
+    for (size_t i = 0; i < faces.size() && started; ++i) {
+      double best = HUGE_VAL, d;
+      for (FI f : around)
+        if (base->face[f] == faces[i] && base->tri[f] >= 0) {
+          const Vec2 at = uv_on(base->tri[f], xyz[v], d);
+          if (d < best) best = d, uv[i] = at;
+        }
+      if (best > 0)
+        for (int t : near_cut[faces[i]]) {
+          const Vec2 at = uv_on(t, xyz[v], d);
+          if (d < best) best = d, uv[i] = at;
+        }
+      if (best == HUGE_VAL) {
+        const Vec2* known = n >= 0 ? node_uv.find(n, faces[i]) : nullptr;
+        if (known) uv[i] = *known;
+        else started = false;
+      }
+    }
+    if (!started) continue;
+    for (size_t i = 0; i < faces.size(); ++i) vertex_uv[{uint32_t(v), faces[i]}] = uv[i];
+    // The move stays under half the shortest edge at the node and turns no
+    // triangle over; where it would (surfaces meeting at a grazing angle),
+    // the node keeps its place on the meshes.
+    double shortest = HUGE_VAL;
+    for (VI w : CGAL::vertices_around_target(m.halfedge(v), m)) shortest = std::min(shortest, (xyz[w] - xyz[v]).norm());
+    Vec3 x = xyz[v];
+    std::vector<Vec2> snapped = uv;
+    const bool moved = snap(g, faces, snapped, x, 0.5 * shortest, 1e-13 * diag);
+    bool flips = false;
+    for (FI f : around) {
+      std::array<Vec3, 3> before, after;
+      int k = 0;
+      for (VI w : CGAL::vertices_around_face(m.halfedge(f), m)) {
+        before[k] = xyz[w];
+        after[k++] = w == v ? x : xyz[w];
+      }
+      const Vec3 nb = (before[1] - before[0]).cross(before[2] - before[0]);
+      const Vec3 na = (after[1] - after[0]).cross(after[2] - after[0]);
+      flips = flips || !(na.dot(nb) > 0);
+    }
+    if (moved && !flips) {
+      xyz[v] = x;
+      for (size_t i = 0; i < faces.size(); ++i) vertex_uv[{uint32_t(v), faces[i]}] = snapped[i];
+    }
+    if (on_cut[v])
+      for (size_t i = 0; i < faces.size(); ++i) junction_faces[v].push_back({faces[i], vertex_uv[{uint32_t(v), faces[i]}]});
+  }
+
+  // The new mesh: the source nodes keep their ids (moved ones their
+  // classification); new nodes follow; unused nodes are dropped.
+  SurfaceMesh r;
+  r.failures = s.failures;
+  r.stats = s.stats;
+  std::vector<int> id(m.number_of_vertices(), -1);
+  std::vector<Vec3> node_xyz = s.xyz, unsnapped = s.xyz;
+  std::vector<int8_t> dim = s.node_dim;
+  std::vector<int> entity = s.node_entity;
+  for (VI v : m.vertices()) {
+    const int n = base->node[v];
+    if (n >= 0) {
+      id[v] = n;
+      node_xyz[n] = xyz[v];
+      unsnapped[n] = vec(m.point(v));
+      continue;
+    }
+    id[v] = static_cast<int>(node_xyz.size());
+    node_xyz.push_back(xyz[v]);
+    unsnapped.push_back(vec(m.point(v)));
+    dim.push_back(2);
+    int face = 0;
+    for (FI f : CGAL::faces_around_target(m.halfedge(v), m))
+      if (f != Mesh::null_face()) face = face ? std::min(face, base->face[f]) : base->face[f];
+    entity.push_back(face);
+    out.junction_nodes += on_cut[v];
+  }
+  std::vector<std::array<int, 3>> tris;
+  std::vector<int> tri_face;
+  std::vector<std::array<Vec2, 3>> tri_uv;
+  for (FI f : m.faces()) {
+    const int face = base->face[f], src = base->tri[f];
+    std::array<int, 3> tr;
+    std::array<Vec2, 3> uv;
+    int k = 0;
+    for (VI v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+      tr[k] = id[v];
+      const int n = base->node[v];
+      const auto known = vertex_uv.find({uint32_t(v), face});
+      if (known != vertex_uv.end()) {
+        uv[k] = known->second;
+      } else if (src >= 0 && n >= 0 && std::find(s.tris[src].begin(), s.tris[src].end(), n) != s.tris[src].end()) {
+        uv[k] = s.tri_uv[src][std::find(s.tris[src].begin(), s.tris[src].end(), n) - s.tris[src].begin()];
+      } else if (const Vec2* at = n >= 0 ? node_uv.find(n, face) : nullptr) {
+        uv[k] = *at;
+      } else {
+        uv[k] = Vec2(0, 0);
+        g.project_to_face(face, node_xyz[tr[k]], uv[k]);
+      }
+      ++k;
+    }
+    // On a periodic face, the corners in one period (the first corner's).
+    for (int axis = 0; axis < 2; ++axis) {
+      const double period = axis == 0 ? g.face_period_u(face) : g.face_period_v(face);
+      if (period > 0)
+        for (int j = 1; j < 3; ++j) uv[j][axis] += period * std::round((uv[0][axis] - uv[j][axis]) / period);
+    }
+    tris.push_back(tr);
+    tri_face.push_back(face);
+    tri_uv.push_back(uv);
+  }
+  for (int t : aside) tris.push_back(s.tris[t]), tri_face.push_back(s.tri_face[t]), tri_uv.push_back(s.tri_uv[t]);
+  for (size_t p = 0; p < parts.size(); ++p)
+    if (!out.failures[p].empty())
+      for (int t : part_tris[p])
+        tris.push_back(s.tris[t]), tri_face.push_back(s.tri_face[t]), tri_uv.push_back(s.tri_uv[t]);
+
+  // Triangles by face, in their order; nodes renumbered in theirs.
+  std::vector<int> order(tris.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tri_face[a] < tri_face[b]; });
+  std::vector<int> used(node_xyz.size(), -1);
+  std::vector<Vec3> before_snap;
+  for (const auto& tr : tris)
+    for (int n : tr) used[n] = 0;
+  for (size_t n = 0; n < used.size(); ++n)
+    if (used[n] == 0) {
+      used[n] = static_cast<int>(r.xyz.size());
+      r.xyz.push_back(node_xyz[n]);
+      before_snap.push_back(unsnapped[n]);
+      r.node_dim.push_back(dim[n]);
+      r.node_entity.push_back(entity[n]);
+    }
+  for (int t : order) {
+    r.tris.push_back({used[tris[t][0]], used[tris[t][1]], used[tris[t][2]]});
+    r.tri_face.push_back(tri_face[t]);
+    r.tri_uv.push_back(tri_uv[t]);
+  }
+  keep_apart(r, before_snap);
+  // Each junction node's distance from each of its surfaces, as it ends.
+  for (auto& [v, on] : junction_faces) {
+    const int n = used[id[v]];
+    double gap = 0;
+    for (auto& [face, uv] : on)
+      gap = g.project_to_face(face, r.xyz[n], uv) ? std::max(gap, (g.eval_face(face, uv).p - r.xyz[n]).norm()) : HUGE_VAL;
+    out.max_junction_gap = std::max(out.max_junction_gap, gap);
+    out.junction_nodes_off += gap > 1e-9 * diag;
+  }
+  s = std::move(r);
+  return out;
+}
+
+}  // namespace sizemesh

@@ -1,0 +1,42 @@
+// Mesh-level union: the last route of a component the B-rep union could not
+// take. Its closed mesh and the closed wetted surface meshed so far are cut
+// where they cross (exact corefinement, CGAL's Polygon Mesh Processing) and
+// only the outer parts are kept. The junction's new nodes are put on the
+// exact intersection of the two CAD surfaces, and the band of triangles the
+// cut crossed is remeshed to the size map's local size, so the cut leaves no
+// sliver.
+//
+// Input:  mesh   the surface mesh of every face (mesh_surface())
+//         g      its geometry (projection of the new nodes onto the faces)
+//         h      the size map (the band's target size)
+//         parts  per component to unite, the ids of its faces
+// Output: mesh rewritten as the union; per part, why it could not be united
+//         (empty when it was). The rest of the mesh keeps its nodes, their
+//         classification and the triangles outside the band.
+// Work:   the corefinement is linear in the triangles near the cut (box
+//         filter first); the band remesh and projection in the band's size.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/geometry.h"
+#include "mesher/surface_mesh.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+struct MeshUnionResult {
+  std::vector<std::string> failures;  // per part: empty when united, else why not
+  int united = 0;                     // parts united
+  int rest_pieces_apart = 0;          // closed pieces of the rest that could not take part (their mesh intersects itself)
+  int junction_nodes = 0;             // nodes on the cut curves, on both CAD surfaces
+  int band_triangles = 0;             // triangles of the remeshed bands
+  int junction_nodes_off = 0;         // of those, nodes left on the meshes (surfaces meeting at a grazing angle)
+  double max_junction_gap = 0;        // largest distance of a junction node from either surface
+};
+
+MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeFunction& h,
+                             const std::vector<std::vector<int>>& parts);
+
+}  // namespace sizemesh

@@ -1,0 +1,151 @@
+// The mesh-level union: components the B-rep union does not take are cut
+// with the rest as meshes. The result is one closed surface of the analytic
+// area whose junction nodes lie on both CAD surfaces, with no sliver.
+// CGAL first: OpenCASCADE defines a macro Handle that CGAL uses as a name.
+#include "tests/exact_intersections.h"
+
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+
+#include "src/pipeline.h"
+#include "tests/temp_dir.h"
+
+using namespace sizemesh;
+
+namespace {
+
+std::string write_compound(const std::vector<TopoDS_Shape>& solids, const std::string& path) {
+  BRep_Builder b;
+  TopoDS_Compound c;
+  b.MakeCompound(c);
+  for (const auto& s : solids) b.Add(c, s);
+  REQUIRE(BRepTools::Write(c, path.c_str()));
+  return path;
+}
+
+std::unique_ptr<RunResult> mesh_file(const std::string& path, const LoadOptions& load, double h_max = 0) {
+  RunOptions o;
+  o.input = path;
+  o.verbose = false;
+  o.load = load;
+  if (h_max > 0) o.sizing.h_max = h_max;
+  auto r = size_model(o, [](const std::string&) {});
+  mesh_model(*r, o, [](const std::string&) {});
+  return r;
+}
+
+double area(const SurfaceMesh& m) {
+  double a = 0;
+  for (const auto& t : m.tris) a += 0.5 * (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]).norm();
+  return a;
+}
+
+// Every edge used twice, once each way: closed and consistently oriented.
+void require_closed(const SurfaceMesh& m) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : m.tris)
+    for (int k = 0; k < 3; ++k) ++uses[{t[k], t[(k + 1) % 3]}];
+  int open = 0, bad = 0;
+  for (const auto& [e, n] : uses) {
+    const auto back = uses.find({e.second, e.first});
+    open += back == uses.end();
+    bad += n != 1;
+  }
+  CHECK(open == 0);
+  CHECK(bad == 0);
+}
+
+long long cgal_pairs(const SurfaceMesh& m) {
+  std::vector<std::array<double, 3>> xyz;
+  for (const Vec3& x : m.xyz) xyz.push_back({x.x(), x.y(), x.z()});
+  return test::exact_self_intersections(xyz, m.tris);
+}
+
+}  // namespace
+
+TEST_CASE("two crossing boxes united at mesh level: the analytic area, closed, junction nodes on both planes") {
+  const test::TempDir dir("mesh_union_boxes");
+  // A = [0,2]x[0,1]x[0,1]; B = [0.5,1.5]x[-0.5,1.5]x[0.25,0.75] pierces A along y.
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(2.0, 1.0, 1.0).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(0.5, -0.5, 0.25), 1.0, 2.0, 0.5).Shape();
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({a, b}, dir / "boxes.brep"), load);
+  const Preparation& p = r->model->info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.components[0].route == "mesh-level union");
+  CHECK(p.components[1].route == "mesh-level union");
+  CHECK(p.not_united.empty());
+  CHECK(p.united_at_mesh_level == 2);
+  CHECK(r->exit_code() == kOk);
+  // A's 10 and B's 7, less A's 1 inside B and B's 3 inside A.
+  CHECK(area(r->mesh) == Approx(13.0).epsilon(0.005));
+  require_closed(r->mesh);
+  CHECK(cgal_pairs(r->mesh) == 0);
+  CHECK(r->report.quality.inverted == 0);
+  CHECK(r->report.quality.avoidable_below_12 == 0);
+  // The junction: four loops on A's planes y = 0 and y = 1, on B's sides.
+  const double diag = std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 1.0);
+  const MeshUnionResult& u = r->report.mesh_union;
+  CHECK(u.united == 2);  // A the start, B cut into it
+  CHECK(u.junction_nodes >= 8);
+  CHECK(u.max_junction_gap <= 1e-7 * diag);
+  CHECK(u.junction_nodes_off == 0);
+  int on_junction = 0;
+  for (const Vec3& x : r->mesh.xyz) {
+    const bool on_a_plane = std::abs(x.y()) < 1e-7 * diag || std::abs(x.y() - 1) < 1e-7 * diag;
+    const bool on_b_side = std::abs(x.x() - 0.5) < 1e-7 * diag || std::abs(x.x() - 1.5) < 1e-7 * diag ||
+                           std::abs(x.z() - 0.25) < 1e-7 * diag || std::abs(x.z() - 0.75) < 1e-7 * diag;
+    const bool in_b_box = x.x() > 0.5 - 1e-9 && x.x() < 1.5 + 1e-9 && x.z() > 0.25 - 1e-9 && x.z() < 0.75 + 1e-9;
+    on_junction += on_a_plane && on_b_side && in_b_box;
+  }
+  CHECK(on_junction >= u.junction_nodes);
+}
+
+TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the plane and on the cylinder") {
+  const test::TempDir dir("mesh_union_cylinder");
+  const double radius = 0.3;
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(2.0, 1.0, 1.0).Shape();
+  const TopoDS_Shape b =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1.0, -0.5, 0.5), gp_Dir(0, 1, 0)), radius, 2.0).Shape();
+  LoadOptions load;
+  load.mesh_union = {2};
+  const auto r = mesh_file(write_compound({a, b}, dir / "pipe.brep"), load, 0.1);
+  write_compound({a, b}, "/tmp/pipe.brep");
+  const Preparation& p = r->model->info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  // The box less two discs, the cylinder's outer unit length and its caps.
+  const double expected = 10.0 + 2 * M_PI * radius;
+  CHECK(area(r->mesh) == Approx(expected).epsilon(0.005));
+  require_closed(r->mesh);
+  CHECK(cgal_pairs(r->mesh) == 0);
+  CHECK(r->report.quality.inverted == 0);
+  CHECK(r->report.quality.avoidable_below_12 == 0);
+  const double diag = std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 1.0);
+  const MeshUnionResult& u = r->report.mesh_union;
+  CHECK(u.united == 1);
+  CHECK(u.max_junction_gap <= 1e-7 * diag);
+  CHECK(u.junction_nodes_off == 0);
+  // No node of the planes y = 0 or y = 1 inside the cylinder; the nodes
+  // on its circle are the junction's: they lie on both surfaces.
+  int junction = 0, inside = 0;
+  for (const Vec3& x : r->mesh.xyz) {
+    const double rho = std::hypot(x.x() - 1.0, x.z() - 0.5);
+    const bool on_plane = std::abs(x.y()) < 1e-7 * diag || std::abs(x.y() - 1) < 1e-7 * diag;
+    if (!on_plane) continue;
+    inside += rho < radius - 1e-7 * diag;
+    junction += std::abs(rho - radius) <= 1e-7 * diag;
+  }
+  CHECK(inside == 0);
+  CHECK(junction == u.junction_nodes);
+  CHECK(junction >= 2 * 2 * M_PI * radius / 0.1);
+}
