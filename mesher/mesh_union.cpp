@@ -9,6 +9,7 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <Eigen/Dense>
+#include <boost/iterator/function_output_iterator.hpp>
 #include <algorithm>
 #include <map>
 #include <memory>
@@ -221,6 +222,13 @@ struct NodeUV {
   }
 };
 
+// Pairs of triangles of m that intersect.
+size_t crossing_pairs(const Mesh& m) {
+  size_t n = 0;
+  PMP::self_intersections(m, boost::make_function_output_iterator([&n](const std::pair<FI, FI>&) { ++n; }));
+  return n;
+}
+
 // The bands along the cuts (the triangles touching a cut node and one ring
 // more) remeshed to the size map's size there: CGAL's isotropic remeshing,
 // the cut curves and CAD face borders kept as constraints (their nodes slide
@@ -277,14 +285,27 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const std::vector<double>& n
   std::map<int, std::vector<FI>> classes;  // size class -> band faces
   for (const auto& [f, id] : region)
     if (length[id] > 0) classes[static_cast<int>(std::floor(std::log(length[id]) / std::log(1.25)))].push_back(f);
+  size_t crossing = crossing_pairs(m);  // the corefinement's own, from rounding its points to doubles
   for (auto& [c, faces] : classes) {
-    out.band_triangles += static_cast<int>(faces.size());
+    // CGAL's remesher does not promise a surface free of self-intersections
+    // (a band folds where two surfaces graze): a class that adds one is undone.
+    const Mesh before = m;
     PMP::isotropic_remeshing(faces, std::pow(1.25, c + 0.5), m,
                              PMP::parameters::number_of_iterations(3)
                                  .edge_is_constrained_map(t.cut)
                                  .vertex_is_constrained_map(fixed)
                                  .face_patch_map(t.face)
                                  .relax_constraints(true));
+    const size_t now = crossing_pairs(m);
+    if (now > crossing) {
+      m = before;
+      t.attach();
+      fixed = m.property_map<VI, bool>("v:fixed").first;
+      ++out.band_classes_undone;
+    } else {
+      crossing = now;
+      out.band_triangles += static_cast<int>(faces.size());
+    }
   }
   m.remove_property_map(fixed);
 }

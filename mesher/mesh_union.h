@@ -32,6 +32,7 @@ struct MeshUnionResult {
   int rest_pieces_apart = 0;          // closed pieces of the rest that could not take part (their mesh intersects itself)
   int junction_nodes = 0;             // nodes on the cut curves, on both CAD surfaces
   int band_triangles = 0;             // triangles of the remeshed bands
+  int band_classes_undone = 0;        // size classes whose band remesh was undone (it made the surface cross itself)
   int junction_nodes_off = 0;         // of those, nodes left on the meshes (surfaces meeting at a grazing angle)
   double max_junction_gap = 0;        // largest distance of a junction node from either surface
 };

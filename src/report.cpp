@@ -124,6 +124,7 @@ nlohmann::json report_json(const RunReport& r) {
                        {"junction_nodes", r.mesh_union.junction_nodes},
                        {"junction_nodes_off_surface", r.mesh_union.junction_nodes_off},
                        {"band_triangles", r.mesh_union.band_triangles},
+                       {"band_classes_undone", r.mesh_union.band_classes_undone},
                        {"max_junction_gap", r.mesh_union.max_junction_gap}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
