@@ -17,6 +17,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "geometry/triangle_bvh.h"
 #include "mesher/self_intersection.h"
 
 namespace sizemesh {
@@ -109,37 +110,6 @@ struct Follow : PMP::Corefinement::Default_visitor<Mesh> {
   }
   void after_vertex_copy(VI from, const Mesh& ms, VI to, Mesh& mt) { s->of(mt).node[to] = s->of(ms).node[from]; }
 };
-
-// Closest point of triangle (a, b, c) to p, as barycentric weights.
-Eigen::Vector3d closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = 1 / (va + vb + vc);
-  const double v = vb * denom, w = vc * denom;
-  return {1 - v - w, v, w};
-}
 
 // The point nearest x on every one of `faces` (a surface, a curve where two
 // meet, a point where three do): Newton on the tangent planes, each step the
@@ -448,7 +418,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   // uv on source triangle t of the point of t nearest x; `dist` its distance.
   auto uv_on = [&](int t, const Vec3& x, double& dist) {
     const auto& tr = s.tris[t];
-    const Eigen::Vector3d w = closest_on_triangle(x, s.xyz[tr[0]], s.xyz[tr[1]], s.xyz[tr[2]]);
+    const Vec3 w = TriangleBVH::closest_barycentric(x, s.xyz[tr[0]], s.xyz[tr[1]], s.xyz[tr[2]]);
     dist = (w[0] * s.xyz[tr[0]] + w[1] * s.xyz[tr[1]] + w[2] * s.xyz[tr[2]] - x).norm();
     return Vec2(w[0] * s.tri_uv[t][0] + w[1] * s.tri_uv[t][1] + w[2] * s.tri_uv[t][2]);
   };
