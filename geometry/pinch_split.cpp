@@ -74,6 +74,16 @@ bool coincident(const TopoDS_Edge& a, const TopoDS_Edge& b, double tol) {
   return (same || reversed) && mid_point(a).Distance(mid_point(b)) <= tol;
 }
 
+// True when the parameter line (u = t when along_u, else v = t) crosses f's
+// uv box strictly inside, not at its border.
+bool strictly_inside(const TopoDS_Face& f, bool along_u, double t) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  const double lo = along_u ? u0 : v0, hi = along_u ? u1 : v1;
+  const double eps = 1e-6 * (hi - lo);
+  return t > lo + eps && t < hi - eps;
+}
+
 // The (u or v, value) to split face f at between its coincident edges a and
 // b: the parameter line through the end they share in uv, across the
 // direction they run in. False when there is none inside the face.
@@ -91,11 +101,7 @@ bool split_line(const TopoDS_Face& f, const TopoDS_Edge& a, const TopoDS_Edge& b
   const gp_Vec2d run(ends_a[0], ends_a[1]);
   along_u = std::abs(run.X()) >= std::abs(run.Y());  // edges along u: split at a u value
   t = along_u ? shared.X() : shared.Y();
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(f, u0, u1, v0, v1);
-  const double lo = along_u ? u0 : v0, hi = along_u ? u1 : v1;
-  const double eps = 1e-6 * (hi - lo);
-  return t > lo + eps && t < hi - eps;
+  return strictly_inside(f, along_u, t);
 }
 
 // Distance from p to the polyline `line`.
@@ -145,11 +151,7 @@ bool split_line_at_turn(const TopoDS_Face& f, const TopoDS_Edge& e, double turn,
   const gp_Pnt2d a = pc->Value(f0), m = pc->Value(turn);
   along_u = std::abs(m.X() - a.X()) >= std::abs(m.Y() - a.Y());
   t = along_u ? m.X() : m.Y();
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(f, u0, u1, v0, v1);
-  const double lo = along_u ? u0 : v0, hi = along_u ? u1 : v1;
-  const double eps = 1e-6 * (hi - lo);
-  return t > lo + eps && t < hi - eps;
+  return strictly_inside(f, along_u, t);
 }
 
 // The pieces of f split at (along_u, t), or empty when that fails.
