@@ -19,6 +19,7 @@
 
 #include "geometry/triangle_bvh.h"
 #include "mesher/self_intersection.h"
+#include "mesher/target_sizes.h"
 
 namespace sizemesh {
 namespace {
@@ -332,21 +333,12 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (auto& tris : part_tris) pieces.push_back(tris);
 
   // Target sizes at the nodes, for the band's edge length.
-  std::vector<double> node_h(s.xyz.size(), -1);
-  {
-    int hint = -1;
-    for (size_t t = 0; t < s.tris.size(); ++t) {
-      if (t > 0 && s.tri_face[t] != s.tri_face[t - 1]) hint = -1;
-      for (int k = 0; k < 3; ++k)
-        if (node_h[s.tris[t][k]] < 0) node_h[s.tris[t][k]] = h.at(s.tri_face[t], s.tri_uv[t][k], hint);
-    }
-  }
+  const std::vector<double> node_h = target_sizes(s, h);
 
   std::unique_ptr<Tracked> base;
   std::set<int> base_nodes;
   // Per CAD face, the source triangles near a cut: uv hints for the projection.
   std::map<int, std::set<int>> near_cut;
-  std::vector<bool> united(pieces.size(), false);
   for (size_t i = 0; i < pieces.size(); ++i) {
     const bool is_part = i >= rest_pieces;
     auto fail = [&](const std::string& why) {
@@ -367,7 +359,6 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     for (VI v : part->m.vertices()) base_nodes.insert(part->node[v]);
     if (!base) {  // the start
       base = std::move(part);
-      united[i] = true;
       out.united += is_part;
       continue;
     }
@@ -390,7 +381,6 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       base = std::move(before);
       continue;
     }
-    united[i] = true;
     out.united += is_part;
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
