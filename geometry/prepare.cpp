@@ -355,6 +355,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     if (cand.size() > static_cast<size_t>(kMaxCandidates)) cand.resize(kMaxCandidates);
     int best = -1;
     Sewn best_sewn;
+    double best_volume = -1;  // of the closed result, when the best closes it
     const std::vector<FaceList> options = removal_options(cand, now);
     for (size_t c = 0; c < options.size(); ++c) {
       FaceList trial;
@@ -365,9 +366,20 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
           trial.push_back(f);
       if (trial.empty() || area_out + out > 0.5 * area_left) continue;
       Sewn s = sew(trial, tol);
-      if (s.free_curves < (best < 0 ? now.free_curves : best_sewn.free_curves)) {
+      const int to_beat = best < 0 ? now.free_curves : best_sewn.free_curves;
+      // Removals that close it alike (a wing's upper skin, lower skin and
+      // planform plane all meet on the leading and trailing edges: any two
+      // close): the one that encloses the most keeps the skins, so what is
+      // taken out is the plane inside them.
+      double volume = -1;
+      if (s.free_curves == 0 && s.free_curves <= to_beat) {
+        const TopoDS_Solid solid = solid_of(s.shape);
+        if (!solid.IsNull()) volume = volume_of(solid);
+      }
+      if (s.free_curves < to_beat || (best >= 0 && s.free_curves == to_beat && volume > best_volume)) {
         best = static_cast<int>(c);
         best_sewn = s;
+        best_volume = volume;
       }
     }
     if (best < 0) break;

@@ -94,7 +94,7 @@ TEST_CASE("closed shared models are watertight after loading") {
 }
 
 TEST_CASE("sewing joins the unsewn F-16 patches") {
-  Model raw = load_model(test::model_path("f16_openvsp.stp"), LoadOptions{false, 1e-5, true, {}});
+  Model raw = load_model(test::model_path("f16_openvsp.stp"), test::load_options(false, true));
   Model sewn = load_model(test::model_path("f16_openvsp.stp"));
   CHECK(raw.info().free_curves_after_sewing == raw.info().free_curves_before_sewing);
   CHECK(raw.info().faces + raw.info().zero_area_faces_removed == 105);

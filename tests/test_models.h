@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/model.h"
+
 namespace sizemesh::test {
 
 struct SharedModel {
@@ -45,5 +47,13 @@ inline const std::vector<std::string>& union_corpus() {
 }
 
 inline std::string model_path(const std::string& file) { return std::string(SIZEMESH_MODELS_DIR) + "/" + file; }
+
+// Load options with sewing and the union (repair and fuse) set, the rest default.
+inline LoadOptions load_options(bool sew, bool unite) {
+  LoadOptions o;
+  o.sew = sew;
+  o.unite = unite;
+  return o;
+}
 
 }  // namespace sizemesh::test

@@ -381,7 +381,7 @@ TEST_CASE("two boxes that touch make no gap, united or not") {
   b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 10.0, 10.0, 1.0).Shape());
   b.Add(pair, BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 1.0 + apart), 10.0, 10.0, 1.0).Shape());
   for (bool unite : {true, false}) {
-    Model m = model_from_shape(pair, LoadOptions{true, 1e-5, unite, {}});
+    Model m = model_from_shape(pair, test::load_options(true, unite));
     REQUIRE(m.closed());
     BackgroundMesh bg = build_background_mesh(m);
     for (GapSide side : {GapSide::Auto, GapSide::Both}) {
