@@ -29,6 +29,13 @@ constexpr int kLeastChangeRounds = 20;
 // Least share of its middle size the least change may keep (below it, the
 // paper's rules): a larger cut spreads to the triangles around that corner.
 constexpr double kLeastChangeKeep = 0.9;
+// Rounds after which the triangles still over their bound are left as they
+// are. Corrections on slivers of the background (near-collinear triangles
+// along a blunt trailing edge) can creep on, each lowering a size by a
+// fraction of a percent; setting such a triangle's sizes equal instead would
+// push its neighbours over their bounds in turn and flood the whole mesh
+// with its smallest size.
+constexpr int kMaxRounds = 1000;
 
 // Gradient of the linear interpolant on a triangle in its own plane (Eq. 11),
 // written with size differences from the corner `o0` so that equal sizes give
@@ -238,15 +245,17 @@ SmoothStats smooth(const BackgroundMesh& bg, SizeMap& m, EdgeSolver solver) {
   std::vector<int> stamp(nt, -1);
   for (int round = 0; !work.empty(); ++round) {
     clock.lap();
+    if (round == kMaxRounds) {
+      for (int t : work) s.steep_triangles += triangle_gradient(bg, m.h, t) > m.tri_log_beta[t];
+      break;
+    }
     std::vector<int> changed;
     for (int t : work) {
       const double lb = m.tri_log_beta[t];
       if (!(triangle_gradient(bg, m.h, t) > lb)) continue;
       const auto& tr = bg.tris[t];
       const double before[3] = {m.h[tr[0]], m.h[tr[1]], m.h[tr[2]]};
-      // After many rounds, fall back to equal sizes (gradient 0) to end for sure.
-      if (round < 1000) correct_triangle(bg, t, lb, m.h, round < kLeastChangeRounds);
-      else m.h[tr[0]] = m.h[tr[1]] = m.h[tr[2]] = std::min({before[0], before[1], before[2]});
+      correct_triangle(bg, t, lb, m.h, round < kLeastChangeRounds);
       for (int k = 0; k < 3; ++k)
         if (m.h[tr[k]] < before[k]) changed.push_back(tr[k]);
       ++s.triangle_corrections;

@@ -28,6 +28,7 @@ struct SmoothStats {
   int rounds = 0;               // edge/triangle stage alternations
   int triangle_corrections = 0;
   int degenerate_triangles = 0; // zero-area triangles (no gradient to bound)
+  int steep_triangles = 0;      // triangles left over their Eq. 11 bound when the rounds ran out
   double t_edge = 0, t_triangle = 0;  // seconds
 };
 

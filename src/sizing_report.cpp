@@ -15,6 +15,7 @@ void print_sizing_summary(const BackgroundMesh& bg, const SizeMap& m, const Smoo
       << std::setprecision(4) << s.max_reduction << "; " << s.rounds << " edge/triangle rounds, "
       << s.triangle_corrections << " triangle corrections";
   if (s.degenerate_triangles) out << ", " << s.degenerate_triangles << " zero-area triangles skipped";
+  if (s.steep_triangles) out << ", " << s.steep_triangles << " triangles left over their bound after " << s.rounds << " rounds";
   out << "\n"
       << "time: curvature " << m.t_curvature << " s, proximity " << m.t_proximity << " s, gaps " << m.t_gap
       << " s, user " << m.t_user << " s, edge stage " << s.t_edge << " s, triangle stage " << s.t_triangle << " s\n";
