@@ -2,7 +2,9 @@
 // smallest element size or its parametrisation jumps (split_folds,
 // geometry/occt_model.h).
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
 #include <BRepLib.hxx>
+#include <GProp_GProps.hxx>
 #include <BRep_Tool.hxx>
 #include <Precision.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -128,14 +130,19 @@ std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std:
   return out;
 }
 
+// Which knot lines a division splits at.
+enum class Lines { Both, U, V };
+
 // Split values of one face's surface: its C0 knots (multiplicity at least the
 // degree) where the surface folds or its parametric speed jumps.
 class FoldSplitter : public ShapeUpgrade_SplitSurface {
  public:
-  FoldSplitter(double band, const std::set<const Geom_Surface*>& whole) : band_(band), whole_(whole) {}
+  FoldSplitter(double band, Lines lines, const std::set<const Geom_Surface*>& whole,
+               const std::set<const Geom_Surface*>* only)
+      : band_(band), lines_(lines), whole_(whole), only_(only) {}
 
   void Compute(const Standard_Boolean /*segment*/) override {
-    if (whole_.count(mySurface.get())) return;
+    if (whole_.count(mySurface.get()) || (only_ && !only_->count(mySurface.get()))) return;
     Handle(Geom_Surface) base = mySurface;
     if (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(base)) base = trimmed->BasisSurface();
     const Handle(Geom_BSplineSurface) b = Handle(Geom_BSplineSurface)::DownCast(base);
@@ -144,12 +151,12 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
     const double v0 = myVSplitValues->Value(1), v1 = myVSplitValues->Value(myVSplitValues->Length());
     const double eps_u = 1e-9 * std::max(u1 - u0, 1e-300), eps_v = 1e-9 * std::max(v1 - v0, 1e-300);
     std::vector<std::pair<double, double>> cand_u, cand_v;
-    for (int k = 2; k < b->NbUKnots(); ++k) {
+    for (int k = 2; k < b->NbUKnots() && lines_ != Lines::V; ++k) {
       const double t = b->UKnot(k);
       if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u) continue;
       if (const double why = splits_at(*b, true, t, v0, v1, u0, u1, band_); why > 0) cand_u.push_back({t, why});
     }
-    for (int k = 2; k < b->NbVKnots(); ++k) {
+    for (int k = 2; k < b->NbVKnots() && lines_ != Lines::U; ++k) {
       const double t = b->VKnot(k);
       if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v) continue;
       if (const double why = splits_at(*b, false, t, u0, u1, v0, v1, band_); why > 0) cand_v.push_back({t, why});
@@ -167,34 +174,53 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
     values->InsertBefore(i, t);
   }
   double band_;
+  Lines lines_;
   const std::set<const Geom_Surface*>& whole_;  // surfaces not to divide
+  const std::set<const Geom_Surface*>* only_;   // when given, the only surfaces to divide
 };
 
 }  // namespace
 
-TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
-                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split) {
-  split = 0;
-  if (shape.IsNull() || !(band > 0)) return shape;
+namespace {
+
+// True when a piece of f has no area: its surface collapses there.
+bool empty_piece(const TopoDS_Face& f, const std::vector<TopoDS_Face>& pieces) {
+  GProp_GProps whole;
+  BRepGProp::SurfaceProperties(f, whole);
+  for (const TopoDS_Face& piece : pieces) {
+    GProp_GProps g;
+    BRepGProp::SurfaceProperties(piece, g);
+    if (std::abs(g.Mass()) <= 1e-9 * std::abs(whole.Mass())) return true;
+  }
+  return false;
+}
+
+// One division of the faces of `shape` (those on `only`'s surfaces, when
+// given) at the knot lines `lines`. `split` counts the faces divided;
+// `collapsed` gets the surfaces left whole because a piece had no area,
+// `pieces` the surfaces of the faces divided and of their pieces.
+TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const std::set<const Geom_Surface*>* only,
+                    const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
+                    std::set<const Geom_Surface*>& collapsed, std::set<const Geom_Surface*>& pieces_made) {
   // Faces whose pieces come out invalid keep their surface whole; the rest
   // are divided again without them (a few rounds at most).
   std::set<const Geom_Surface*> whole;
   for (int round = 0; round < kRounds; ++round) {
     try {
       Handle(ShapeUpgrade_FaceDivide) faces = new ShapeUpgrade_FaceDivide;
-      faces->SetSplitSurfaceTool(new FoldSplitter(band, whole));
-      ShapeUpgrade_ShapeDivide divide(shape);
-      divide.SetSplitFaceTool(faces);
-      divide.SetSurfaceSegmentMode(true);
-      if (!divide.Perform() || !divide.Status(ShapeExtend_DONE)) return shape;
-      const TopoDS_Shape result = divide.Result();
+      faces->SetSplitSurfaceTool(new FoldSplitter(band, lines, whole, only));
+      ShapeUpgrade_ShapeDivide division(shape);
+      division.SetSplitFaceTool(faces);
+      division.SetSurfaceSegmentMode(true);
+      if (!division.Perform() || !division.Status(ShapeExtend_DONE)) return shape;
+      const TopoDS_Shape result = division.Result();
       if (result.IsNull()) return shape;
       // The divided edges keep their old flags: recompute them (and the
       // tolerances they need) before judging the result.
       BRepLib::SameParameter(result, Precision::Confusion(), true);
       // Each face the division replaced, with its pieces (one piece: only its
       // edges were divided, by a neighbour's split).
-      const Handle(ShapeBuild_ReShape) context = divide.GetContext();
+      const Handle(ShapeBuild_ReShape) context = division.GetContext();
       std::vector<std::pair<TopoDS_Face, std::vector<TopoDS_Face>>> replaced;
       bool valid = true;
       for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
@@ -206,6 +232,7 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
         if (!std::all_of(pieces.begin(), pieces.end(),
                          [](const TopoDS_Face& piece) { return BRepCheck_Analyzer(piece).IsValid(); })) {
           whole.insert(BRep_Tool::Surface(f).get());
+          if (empty_piece(f, pieces)) collapsed.insert(BRep_Tool::Surface(f).get());
           valid = false;
         }
         replaced.push_back({f, std::move(pieces)});
@@ -216,16 +243,40 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
       if ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid())
         return shape;
       for (const auto& [f, pieces] : replaced) {
-        for (const TopoDS_Face& piece : pieces) follow(f, piece);
+        for (const TopoDS_Face& piece : pieces) follow(f, piece), pieces_made.insert(BRep_Tool::Surface(piece).get());
         split += pieces.size() > 1;
       }
       return result;
     } catch (const Standard_Failure&) {
-      split = 0;
       return shape;
     }
   }
   return shape;
+}
+
+}  // namespace
+
+TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
+                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split) {
+  split = 0;
+  if (shape.IsNull() || !(band > 0)) return shape;
+  std::set<const Geom_Surface*> collapsed, pieces;
+  TopoDS_Shape result = divide(shape, band, Lines::Both, nullptr, follow, split, collapsed, pieces);
+  if (collapsed.empty()) return result;
+  // A face whose division both ways leaves a piece of no area (a wing's
+  // skin whose root cap collapses onto its chord, and its blunt trailing
+  // edge onto a point there) is divided one way, at its u lines, then each
+  // piece at its v lines: the caps come apart from the skin, and the skin
+  // from its trailing edge.
+  std::set<const Geom_Surface*> none, u_pieces;
+  int more = 0;
+  result = divide(result, band, Lines::U, &collapsed, follow, more, none, u_pieces);
+  split += more;
+  u_pieces.insert(collapsed.begin(), collapsed.end());
+  more = 0;
+  result = divide(result, band, Lines::V, &u_pieces, follow, more, none, pieces);
+  split += more;
+  return result;
 }
 
 }  // namespace sizemesh

@@ -158,6 +158,15 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
 TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
                          const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split);
 
+// geometry/planar_faces.cpp: faces of `shape` whose surface (a B-spline or
+// other) lies on a plane within `tol` rebuilt on that plane with the same
+// edges, and neighbouring ones cut from one face (`source`) on one plane
+// merged; `follow(face, result)` for each, `rebuilt` counts the faces
+// rebuilt. Returns `shape` itself when none is, or when the result would be
+// invalid.
+TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
+                          const Follow& follow, int& rebuilt);
+
 // geometry/flow_domain.cpp: the far field and the symmetry plane around the
 // prepared `body` (bounding box lo..hi, model tolerance `tol`). `source` is
 // updated for the body's faces the cut splits; `kind` gets Boundary::Farfield

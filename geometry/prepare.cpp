@@ -656,6 +656,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
   // Folds narrower than half the default smallest element become curves.
   out.shape = split_folds(result, kFoldBand * diagonal, follow, info.faces_split_at_folds);
+  // Flat faces on their plane: no region of zero area in their uv.
+  out.shape = planar_faces(out.shape, tol, out.source, follow, info.faces_made_planar);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());
   return out;
 }

@@ -42,6 +42,7 @@ void print_info(const Model& model, std::ostream& out) {
     if (!prep.union_skipped && !prep.fused && prep.not_united.empty()) out << (prep.fallback.empty() ? "not needed" : "not kept: " + prep.fallback);
     out << "; " << prep.duplicate_faces_removed << " duplicate and " << prep.internal_faces_removed
         << " internal faces removed; " << prep.faces_split_at_folds << " split at folds or parameter jumps; "
+        << prep.faces_made_planar << " flat faces put on their plane; "
         << prep.faces_before << " faces before, " << prep.faces_after << " after\n";
   }
   const FlowDomain& d = i.domain;

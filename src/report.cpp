@@ -46,6 +46,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"pocket_faces_removed", prep.pocket_faces_removed},
                       {"components_repaired", prep.components_repaired},
                       {"faces_split_at_folds", prep.faces_split_at_folds},
+                      {"faces_made_planar", prep.faces_made_planar},
                       {"faces_before", prep.faces_before},
                       {"faces_after", prep.faces_after}};
   const FlowDomain& d = info.domain;
@@ -74,7 +75,8 @@ nlohmann::json report_json(const RunReport& r) {
                    {"vertices_limited_by", limited},
                    {"smoothing_lowered", r.smoothing.lowered},
                    {"smoothing_max_reduction", r.smoothing.max_reduction},
-                   {"smoothing_rounds", r.smoothing.rounds}};
+                   {"smoothing_rounds", r.smoothing.rounds},
+                   {"smoothing_steep_triangles", r.smoothing.steep_triangles}};
   }
   if (r.mesh) {
     const MeshQuality& q = r.quality;

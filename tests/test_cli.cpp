@@ -110,7 +110,8 @@ TEST_CASE("info reports unit, bounding box, counts and free curves") {
   CHECK(r.out.find("-> solid (6 faces taken out)") != std::string::npos);
   // --info describes the file: the repair, not the union (tests/test_union.cpp).
   CHECK(r.out.find("union:       not run: --info describes the file, a mesh run unites its components; 4 duplicate "
-                   "and 5 internal faces removed; 0 split at folds or parameter jumps; 69 faces before, 60 after") !=
+                   "and 5 internal faces removed; 0 split at folds or parameter jumps; 0 flat faces put on their plane; "
+                   "69 faces before, 60 after") !=
         std::string::npos);
   const auto raw = test::run_sizemesh("--info --no-union " + test::model_path("f16_openvsp.stp"));
   REQUIRE(raw.status == 0);

@@ -75,13 +75,17 @@ TEST_CASE("a wing whose tips are slits and that carries its planform plane close
   // at root and tip (two coincident edges each, which sewing cannot join),
   // and a planform plane inside, sewn to one side of the tip slit. The skin
   // is split between its slit edges, the halves sew, the plane is taken out.
+  // Each half's root and tip caps collapse onto the chord, and over an area
+  // where the blunt trailing edge meets them: they are split off the skin,
+  // put on their planes, and the two halves of each cap merged.
   const Model m = load_model(test::model_path("wing_blunt_te_openvsp.stp"));
   const Preparation& p = m.info().preparation;
   REQUIRE(p.components.size() == 1);
   CHECK(p.components[0].role == "solid");
   CHECK(p.internal_faces_removed == 1);
   CHECK(m.closed());
-  CHECK(m.num_faces() == 2);
+  CHECK(p.faces_made_planar == 4);
+  CHECK(m.num_faces() == 4);
   CHECK(m.info().solids == 1);
   CHECK(p.half_model_axis == -1);
 }

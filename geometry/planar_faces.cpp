@@ -1,0 +1,199 @@
+// Faces whose surface is a plane in all but name rebuilt on that plane
+// (planar_faces, geometry/occt_model.h).
+//
+// CAD writers export flat caps and root faces as B-splines ruled between two
+// curves; where those curves meet (a wing's root cap at its leading edge, or
+// where its blunt trailing edge collapses to a point) the parametrisation has
+// regions of zero area, which a front advancing in uv cannot fill, and a
+// Boolean cut at a coincident plane treats as a curved face. On the plane
+// itself uv is length, and the same edges bound it.
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepLib.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <TopExp.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <BRepTools.hxx>
+#include <algorithm>
+#include <vector>
+#include <BRepTools_ReShape.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomLib_IsPlanarSurface.hxx>
+#include <Geom_Plane.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <TopTools_DataMapOfShapeInteger.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopTools_MapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Wire.hxx>
+
+#include "geometry/occt_model.h"
+
+namespace sizemesh {
+namespace {
+
+// The surface normal (du x dv) at the middle of the face's uv box, or false.
+bool mid_normal(const TopoDS_Face& f, gp_Dir& n) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepAdaptor_Surface s(f, false);
+  for (double t : {0.5, 0.3, 0.7, 0.1, 0.9}) {
+    BRepLProp_SLProps p(s, u0 + t * (u1 - u0), v0 + (1 - t) * (v1 - v0), 1, 1e-9);
+    if (p.IsNormalDefined()) {
+      n = p.Normal();
+      return true;
+    }
+  }
+  return false;
+}
+
+// A degenerate edge, or a closed one no longer than `tol`: a point that the
+// surface's parametrisation stretched into a line.
+bool point_like(const TopoDS_Edge& e, double tol) {
+  if (BRep_Tool::Degenerated(e)) return true;
+  TopoDS_Vertex v0, v1;
+  TopExp::Vertices(e, v0, v1);
+  if (v0.IsNull() || !v0.IsSame(v1)) return false;
+  BRepAdaptor_Curve c(e);
+  return GCPnts_AbscissaPoint::Length(c, tol) <= tol;
+}
+
+// True when the face's parametrisation has no area over a region of it
+// (not just at a pole): the area element |Su x Sv| vanishes on at least a
+// row's worth of a grid over its uv box.
+bool collapses(const TopoDS_Face& f) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepAdaptor_Surface s(f, false);
+  constexpr int n = 9;
+  double most = 0;
+  std::vector<double> element;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      gp_Pnt p;
+      gp_Vec du, dv;
+      s.D1(u0 + (u1 - u0) * (i + 0.5) / n, v0 + (v1 - v0) * (j + 0.5) / n, p, du, dv);
+      element.push_back(du.Crossed(dv).Magnitude());
+      most = std::max(most, element.back());
+    }
+  return std::count_if(element.begin(), element.end(), [&](double a) { return a <= 1e-9 * most; }) >= n;
+}
+
+// Face f (taken forward) rebuilt on `plane` with its edges, degenerate ones
+// and point-like ones left out (a point on a plane is no curve); null when the result is invalid.
+TopoDS_Face on_plane(const TopoDS_Face& f, const Handle(Geom_Plane)& plane, double tol) {
+  BRep_Builder b;
+  TopoDS_Face out;
+  b.MakeFace(out, plane, tol);
+  for (TopoDS_Iterator w(f.Oriented(TopAbs_FORWARD)); w.More(); w.Next()) {
+    if (w.Value().ShapeType() != TopAbs_WIRE) continue;
+    TopoDS_Wire wire;
+    b.MakeWire(wire);
+    int edges = 0;
+    for (TopoDS_Iterator e(w.Value()); e.More(); e.Next())
+      if (!point_like(TopoDS::Edge(e.Value()), tol)) b.Add(wire, e.Value()), ++edges;
+    if (edges == 0) continue;
+    wire.Closed(true);
+    b.Add(out, wire.Oriented(w.Value().Orientation()));
+  }
+  TopTools_ListOfShape edges;
+  for (TopExp_Explorer e(out, TopAbs_EDGE); e.More(); e.Next()) edges.Append(e.Current());
+  BRepLib::BuildPCurveForEdgesOnPlane(edges, out);
+  BRepLib::SameParameter(out, tol);
+  if (!BRepCheck_Analyzer(out).IsValid()) return {};
+  return out;
+}
+
+// Neighbouring faces rebuilt on their plane, cut from one source face and lying on one plane
+// (the upper and lower halves of a wing's root cap, split at its chord)
+// merged into one: their shared edges, iso-lines of a surface that collapsed
+// there, are no curves of the model, and a Boolean cut at that plane fails
+// on them. Every other edge is kept.
+TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfShapeInteger& source,
+                            const TopTools_MapOfShape& rebuilt, const Follow& follow) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  ShapeUpgrade_UnifySameDomain unify(shape, false, true, false);
+  int mergeable = 0;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopTools_ListOfShape& faces = edge_faces(i);
+    bool merge = faces.Extent() == 2;
+    int id = -1;
+    for (const auto& f : faces) {
+      if (!merge) break;
+      merge = rebuilt.Contains(f) && source.IsBound(f) && (id < 0 || source(f) == id);
+      if (merge) id = source(f);
+    }
+    if (merge) ++mergeable;
+    else unify.KeepShape(edge_faces.FindKey(i));
+  }
+  if (mergeable == 0) return shape;
+  TopoDS_Shape result;
+  try {
+    unify.Build();
+    result = unify.Shape();
+  } catch (const Standard_Failure&) {
+    return shape;
+  }
+  if (result.IsNull() || !BRepCheck_Analyzer(result).IsValid() ||
+      (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
+    return shape;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next())
+    for (const auto& g : unify.History()->Modified(ex.Current()))
+      if (g.ShapeType() == TopAbs_FACE) follow(TopoDS::Face(ex.Current()), TopoDS::Face(g));
+  return result;
+}
+
+}  // namespace
+
+TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
+                          const Follow& follow, int& rebuilt) {
+  rebuilt = 0;
+  if (shape.IsNull()) return shape;
+  Handle(BRepTools_ReShape) reshape = new BRepTools_ReShape;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face f = TopoDS::Face(ex.Current().Oriented(TopAbs_FORWARD));
+    if (reshape->IsRecorded(f)) continue;
+    try {
+      const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
+      if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane || !collapses(f)) continue;
+      GeomLib_IsPlanarSurface planar(s, tol);
+      if (!planar.IsPlanar()) continue;
+      gp_Dir n;
+      if (!mid_normal(f, n)) continue;
+      gp_Pln pln = planar.Plan();
+      if (pln.Axis().Direction().Dot(n) < 0) pln.SetAxis(pln.Axis().Reversed());
+      const TopoDS_Face g = on_plane(f, new Geom_Plane(pln), tol);
+      if (g.IsNull()) continue;
+      reshape->Replace(f, g);
+      replaced.emplace_back(f, g);
+    } catch (const Standard_Failure&) {
+      continue;  // the face keeps its surface
+    }
+  }
+  if (replaced.empty()) return shape;
+  TopoDS_Shape result;
+  try {
+    result = reshape->Apply(shape);
+  } catch (const Standard_Failure&) {
+    return shape;
+  }
+  if (result.IsNull() || !BRepCheck_Analyzer(result).IsValid() ||
+      (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
+    return shape;
+  TopTools_MapOfShape on_planes;
+  for (const auto& [f, g] : replaced) follow(f, g), on_planes.Add(g);
+  rebuilt = static_cast<int>(replaced.size());
+  return merge_coplanar(result, source, on_planes, follow);
+}
+
+}  // namespace sizemesh
