@@ -7,33 +7,34 @@
 // regions of zero area, which a front advancing in uv cannot fill, and a
 // Boolean cut at a coincident plane treats as a curved face. On the plane
 // itself uv is length, and the same edges bound it.
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepLib.hxx>
 #include <BRepLProp_SLProps.hxx>
-#include <BRepAdaptor_Curve.hxx>
-#include <BRepAdaptor_Surface.hxx>
-#include <GCPnts_AbscissaPoint.hxx>
-#include <TopExp.hxx>
-#include <TopoDS_Vertex.hxx>
 #include <BRepTools.hxx>
-#include <algorithm>
-#include <vector>
 #include <BRepTools_ReShape.hxx>
-#include <BRep_Builder.hxx>
-#include <BRep_Tool.hxx>
-#include <GeomLib_IsPlanarSurface.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
 #include <Geom_Plane.hxx>
-#include <Standard_Failure.hxx>
-#include <TopExp_Explorer.hxx>
+#include <GeomLib_IsPlanarSurface.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
 #include <TopTools_DataMapOfShapeInteger.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopTools_MapOfShape.hxx>
-#include <TopoDS.hxx>
-#include <TopoDS_Face.hxx>
-#include <TopoDS_Iterator.hxx>
-#include <TopoDS_Wire.hxx>
+
+#include <algorithm>
+#include <vector>
 
 #include "geometry/occt_model.h"
 
@@ -112,11 +113,11 @@ TopoDS_Face on_plane(const TopoDS_Face& f, const Handle(Geom_Plane)& plane, doub
   return out;
 }
 
-// Neighbouring faces rebuilt on their plane, cut from one source face and lying on one plane
-// (the upper and lower halves of a wing's root cap, split at its chord)
-// merged into one: their shared edges, iso-lines of a surface that collapsed
-// there, are no curves of the model, and a Boolean cut at that plane fails
-// on them. Every other edge is kept.
+// Neighbouring faces rebuilt on their plane, cut from one source face and
+// lying on one plane (the upper and lower halves of a wing's root cap, split
+// at its chord), merged into one: their shared edge, an iso-line of a
+// surface that collapsed there, is no curve of the model, and a Boolean cut
+// at that plane fails on it. Every other edge is kept.
 TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfShapeInteger& source,
                             const TopTools_MapOfShape& rebuilt, const Follow& follow) {
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
