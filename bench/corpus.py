@@ -28,7 +28,8 @@ sys.path.insert(0, HERE)
 from models import DIR, MODELS  # noqa: E402  (bench/models.py: the one list)
 ROOT = os.path.dirname(HERE)
 # Half wings of tests/data and the plane their root lies on.
-HALF_MODELS = {"wing_blunt_te_openvsp.stp": "y", "c172_wing_pygeo.igs": "z", "onera_m6_wing.stp": "y"}
+HALF_MODELS = {"wing_blunt_te_openvsp.stp": "y", "wing_blunt_te2_openvsp.stp": "y",
+               "c172_wing_pygeo.igs": "z", "onera_m6_wing.stp": "y"}
 
 
 def timed(cmd, timeout):

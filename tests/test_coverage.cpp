@@ -105,9 +105,10 @@ Coverage coverage(const Geometry& raw, const SurfaceMesh& m) {
 
 TEST_CASE("every point of the faces as read lies on the wetted surface or inside it", "[models]") {
   // The F-16 and the manta (components united as B-reps, internal caps and
-  // planes taken out) and OpenVSP's blunt-trailing-edge wing (a planform
-  // plane between the halves of its skin).
-  for (const char* file : {"f16_openvsp.stp", "manta2_openvsp.stp", "wing_blunt_te_openvsp.stp"}) {
+  // planes taken out) and OpenVSP's two exports of a blunt-trailing-edge
+  // wing (a planform plane between the halves of its skin).
+  for (const char* file :
+       {"f16_openvsp.stp", "manta2_openvsp.stp", "wing_blunt_te_openvsp.stp", "wing_blunt_te2_openvsp.stp"}) {
     SECTION(file) {
       RunOptions o;
       o.input = test::model_path(file);

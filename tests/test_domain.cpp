@@ -194,34 +194,39 @@ TEST_CASE("OpenVSP's blunt-trailing-edge wing: its flat root cap on the symmetry
   // One B-spline skin whose root and tip caps collapse onto their chords and
   // whose blunt trailing edge collapses to a point there. The caps are put
   // on their planes and their halves merged; the root cap is then a plane
-  // face on y = 0 that the cut takes out.
-  sizemesh::test::TempDir dir("blunt");
-  const auto j = sizemesh::test::run_with_report(sizemesh::test::model_path("wing_blunt_te_openvsp.stp") +
-                                                     " -q --farfield box --symmetry y -o " + (dir / "half.mesh"),
-                                                 dir / "r.json");
-  CHECK(j["preparation"]["faces_made_planar"] == 4);
-  CHECK(j["domain"]["symmetry_faces"] == 1);
-  const auto& m = j["mesh"];
-  CHECK(m["failed_faces"].empty());
-  CHECK(m["boundary_edges"] == 0);
-  CHECK(m["nonmanifold_edges"] == 0);
-  CHECK(m["orientation_conflicts"] == 0);
-  CHECK(m["self_intersecting_pairs"] == 0);
-  CHECK(m["inverted_triangles"] == 0);
-  CHECK(m["avoidable_below_12deg"] == 0);
-  // The caps' sizes stay local: a background that creeps on slivers of the
-  // trailing edge once flooded the whole wing with h_min.
-  CHECK(m["share_at_h_min"].get<double>() < 0.02);
-  const Surface s = read_medit(dir / "half.mesh");
-  const double tol = 1e-6 * j["model"]["diagonal"].get<double>();
-  long below = 0;
-  for (const auto& x : s.xyz) below += x[1] < -tol;
-  CHECK(below == 0);
-  CHECK(measure(s).boundary_edges == 0);
-  REQUIRE(run_sizemesh(sizemesh::test::model_path("wing_blunt_te_openvsp.stp") +
-                       " -q --farfield box --symmetry y -o " + (dir / "half.smesh"))
-              .status == 0);
-  check_tetgen_keeps_markers(dir, "half");
+  // face on y = 0 that the cut takes out. Both of OpenVSP's exports of this
+  // wing (two layouts of the trailing edge).
+  for (const char* file : {"wing_blunt_te_openvsp.stp", "wing_blunt_te2_openvsp.stp"}) {
+    SECTION(file) {
+      sizemesh::test::TempDir dir("blunt");
+      const auto j = sizemesh::test::run_with_report(sizemesh::test::model_path(file) +
+                                                         " -q --farfield box --symmetry y -o " + (dir / "half.mesh"),
+                                                     dir / "r.json");
+      CHECK(j["preparation"]["faces_made_planar"] == 4);
+      CHECK(j["domain"]["symmetry_faces"] == 1);
+      const auto& m = j["mesh"];
+      CHECK(m["failed_faces"].empty());
+      CHECK(m["boundary_edges"] == 0);
+      CHECK(m["nonmanifold_edges"] == 0);
+      CHECK(m["orientation_conflicts"] == 0);
+      CHECK(m["self_intersecting_pairs"] == 0);
+      CHECK(m["inverted_triangles"] == 0);
+      CHECK(m["avoidable_below_12deg"] == 0);
+      // The caps' sizes stay local: a background that creeps on slivers of the
+      // trailing edge once flooded the whole wing with h_min.
+      CHECK(m["share_at_h_min"].get<double>() < 0.02);
+      const Surface s = read_medit(dir / "half.mesh");
+      const double tol = 1e-6 * j["model"]["diagonal"].get<double>();
+      long below = 0;
+      for (const auto& x : s.xyz) below += x[1] < -tol;
+      CHECK(below == 0);
+      CHECK(measure(s).boundary_edges == 0);
+      REQUIRE(run_sizemesh(sizemesh::test::model_path(file) +
+                           " -q --farfield box --symmetry y -o " + (dir / "half.smesh"))
+                  .status == 0);
+      check_tetgen_keeps_markers(dir, "half");
+    }
+  }
 }
 
 TEST_CASE("a sphere in a half far field: areas and enclosed volume match their analytic values", "[domain]") {
