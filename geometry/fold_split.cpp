@@ -179,10 +179,6 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
   const std::set<const Geom_Surface*>* only_;   // when given, the only surfaces to divide
 };
 
-}  // namespace
-
-namespace {
-
 // True when a piece of f has no area: its surface collapses there.
 bool empty_piece(const TopoDS_Face& f, const std::vector<TopoDS_Face>& pieces) {
   GProp_GProps whole;
@@ -196,9 +192,9 @@ bool empty_piece(const TopoDS_Face& f, const std::vector<TopoDS_Face>& pieces) {
 }
 
 // One division of the faces of `shape` (those on `only`'s surfaces, when
-// given) at the knot lines `lines`. `split` counts the faces divided;
+// given) at the knot lines `lines`. `split` is increased by the faces divided;
 // `collapsed` gets the surfaces left whole because a piece had no area,
-// `pieces` the surfaces of the faces divided and of their pieces.
+// `pieces_made` the surfaces of the pieces.
 TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const std::set<const Geom_Surface*>* only,
                     const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
                     std::set<const Geom_Surface*>& collapsed, std::set<const Geom_Surface*>& pieces_made) {
@@ -260,23 +256,17 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
                          const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split) {
   split = 0;
   if (shape.IsNull() || !(band > 0)) return shape;
-  std::set<const Geom_Surface*> collapsed, pieces;
-  TopoDS_Shape result = divide(shape, band, Lines::Both, nullptr, follow, split, collapsed, pieces);
+  std::set<const Geom_Surface*> collapsed, unused, u_pieces;
+  TopoDS_Shape result = divide(shape, band, Lines::Both, nullptr, follow, split, collapsed, unused);
   if (collapsed.empty()) return result;
   // A face whose division both ways leaves a piece of no area (a wing's
   // skin whose root cap collapses onto its chord, and its blunt trailing
   // edge onto a point there) is divided one way, at its u lines, then each
   // piece at its v lines: the caps come apart from the skin, and the skin
   // from its trailing edge.
-  std::set<const Geom_Surface*> none, u_pieces;
-  int more = 0;
-  result = divide(result, band, Lines::U, &collapsed, follow, more, none, u_pieces);
-  split += more;
+  result = divide(result, band, Lines::U, &collapsed, follow, split, unused, u_pieces);
   u_pieces.insert(collapsed.begin(), collapsed.end());
-  more = 0;
-  result = divide(result, band, Lines::V, &u_pieces, follow, more, none, pieces);
-  split += more;
-  return result;
+  return divide(result, band, Lines::V, &u_pieces, follow, split, unused, unused);
 }
 
 }  // namespace sizemesh

@@ -372,7 +372,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       // close): the one that encloses the most keeps the skins, so what is
       // taken out is the plane inside them.
       double volume = -1;
-      if (s.free_curves == 0 && s.free_curves <= to_beat) {
+      if (s.free_curves == 0) {
         const TopoDS_Solid solid = solid_of(s.shape);
         if (!solid.IsNull()) volume = volume_of(solid);
       }
