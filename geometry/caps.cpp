@@ -68,11 +68,18 @@ HalfModelPlanes half_model_planes(const Vec3& lo, const Vec3& hi, double tol) {
 
 Caps planar_caps(const TopoDS_Shape& shape, double tol, const HalfModelPlanes& half, int cap_axis) {
   Caps out;
+  Handle(TopTools_HSequenceOfShape) edges, wires;
   try {
-    Handle(TopTools_HSequenceOfShape) edges = free_edges(shape), wires;
+    edges = free_edges(shape);
     if (edges->IsEmpty()) return out;
     ShapeAnalysis_FreeBounds::ConnectEdgesToWires(edges, tol, Standard_False, wires);
-    for (int i = 1; i <= wires->Length(); ++i) {
+  } catch (const Standard_Failure&) {
+    return out;
+  }
+  // Each loop on its own: one that fails (a loop of no area, on a line) does
+  // not keep the others open.
+  for (int i = 1; i <= wires->Length(); ++i) {
+    try {
       const TopoDS_Wire wire = TopoDS::Wire(wires->Value(i));
       TopoDS_Vertex first, last;
       TopExp::Vertices(wire, first, last);
@@ -88,11 +95,10 @@ Caps planar_caps(const TopoDS_Shape& shape, double tol, const HalfModelPlanes& h
         continue;
       }
       BRepBuilderAPI_MakeFace make(plane->Pln(), wire, Standard_True);
-      if (!make.IsDone()) continue;
-      out.faces.push_back(make.Face());
+      if (make.IsDone()) out.faces.push_back(make.Face());
+    } catch (const Standard_Failure&) {
+      continue;
     }
-  } catch (const Standard_Failure&) {
-    out.faces.clear();
   }
   return out;
 }

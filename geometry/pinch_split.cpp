@@ -9,13 +9,16 @@
 // between the two edges, along the parameter line through the point where
 // they meet, the face becomes two whose edges along the slit sewing joins.
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Precision.hxx>
 #include <ShapeExtend.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_FaceDivide.hxx>
 #include <ShapeUpgrade_ShapeDivide.hxx>
 #include <ShapeUpgrade_SplitSurface.hxx>
@@ -56,12 +59,15 @@ class ParamSplitter : public ShapeUpgrade_SplitSurface {
   double t_;
 };
 
-gp_Pnt mid_point(const TopoDS_Edge& e) {
-  BRepAdaptor_Curve c(e);
-  return c.Value(0.5 * (c.FirstParameter() + c.LastParameter()));
+// Distance from p to the edge's curve.
+double distance_to(const gp_Pnt& p, const TopoDS_Edge& e) {
+  BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(p).Vertex(), e);
+  return d.IsDone() && d.NbSolution() > 0 ? d.Value() : Precision::Infinite();
 }
 
-// True when edges a and b run along the same line: both ends and the middle within tol.
+// True when edges a and b run along the same line: both ends within tol,
+// and points along each within tol of the other (the two may be
+// parametrised differently).
 bool coincident(const TopoDS_Edge& a, const TopoDS_Edge& b, double tol) {
   TopoDS_Vertex a0, a1, b0, b1;
   TopExp::Vertices(a, a0, a1);
@@ -71,7 +77,14 @@ bool coincident(const TopoDS_Edge& a, const TopoDS_Edge& b, double tol) {
   if (pa0.Distance(pa1) <= tol) return false;  // a closed edge is no slit
   const bool same = pa0.Distance(pb0) <= tol && pa1.Distance(pb1) <= tol;
   const bool reversed = pa0.Distance(pb1) <= tol && pa1.Distance(pb0) <= tol;
-  return (same || reversed) && mid_point(a).Distance(mid_point(b)) <= tol;
+  if (!same && !reversed) return false;
+  for (const auto& [from, to] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
+    BRepAdaptor_Curve c(*from);
+    for (double s : {0.25, 0.5, 0.75})
+      if (distance_to(c.Value(c.FirstParameter() + s * (c.LastParameter() - c.FirstParameter())), *to) > tol)
+        return false;
+  }
+  return true;
 }
 
 // True when the parameter line (u = t when along_u, else v = t) crosses f's
@@ -166,9 +179,17 @@ std::vector<TopoDS_Face> divided(const TopoDS_Face& f, bool along_u, double t) {
   if (result.IsNull()) return {};
   BRepLib::SameParameter(result, Precision::Confusion(), true);
   std::vector<TopoDS_Face> pieces;
+  // A piece whose new vertices need wider tolerances than the division gave
+  // them (a tip of zero thickness) is made valid by the shape healing.
   for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) {
-    if (!BRepCheck_Analyzer(ex.Current()).IsValid()) return {};
-    pieces.push_back(TopoDS::Face(ex.Current()));
+    TopoDS_Shape piece = ex.Current();
+    if (!BRepCheck_Analyzer(piece).IsValid()) {
+      ShapeFix_Shape fix(piece);
+      fix.Perform();
+      piece = fix.Shape();
+      if (piece.IsNull() || piece.ShapeType() != TopAbs_FACE || !BRepCheck_Analyzer(piece).IsValid()) return {};
+    }
+    pieces.push_back(TopoDS::Face(piece));
   }
   return pieces.size() > 1 ? pieces : std::vector<TopoDS_Face>{};
 }

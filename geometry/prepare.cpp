@@ -228,32 +228,39 @@ std::vector<FaceList> removal_options(const FaceList& cand, const Sewn& s) {
   return out;
 }
 
-// A point inside the face (not on its boundary), found on a uv grid.
-bool interior_point(const TopoDS_Face& f, gp_Pnt& p) {
+// Points inside the face (not on its boundary), found on a uv grid: the
+// centre first, then outwards; at most `wanted`, spread over the grid.
+std::vector<gp_Pnt> interior_points(const TopoDS_Face& f, int wanted) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
   BRepTopAdaptor_FClass2d inside(f, Precision::PConfusion());
   BRepAdaptor_Surface s(f, false);
   constexpr int n = 9;
+  std::vector<gp_Pnt> found;
   for (int k = 0; k < n * n; ++k) {
-    // Centre first, then outwards.
     const int i = (n / 2 + (k % n + 1) / 2 * ((k % n) % 2 ? 1 : -1)) % n;
     const int j = (n / 2 + (k / n + 1) / 2 * ((k / n) % 2 ? 1 : -1)) % n;
     const double u = u0 + (u1 - u0) * (i + 0.5) / n, v = v0 + (v1 - v0) * (j + 0.5) / n;
-    if (inside.Perform(gp_Pnt2d(u, v)) == TopAbs_IN) {
-      p = s.Value(u, v);
-      return true;
-    }
+    if (inside.Perform(gp_Pnt2d(u, v)) == TopAbs_IN) found.push_back(s.Value(u, v));
   }
-  return false;
+  if (static_cast<int>(found.size()) <= wanted) return found;
+  std::vector<gp_Pnt> out;
+  for (int k = 0; k < wanted; ++k) out.push_back(found[k * found.size() / wanted]);
+  return out;
 }
 
-// True when the face lies inside the solid or on its boundary.
+// True when the face lies inside the solid or on its boundary: most of a few
+// points spread over it do. One point alone may sit where another body
+// touches the face (a jury strut's foot on a strut), or be misjudged by the
+// classifier that close to the boundary (a planform plane in a thin wing).
 bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
-  gp_Pnt p;
-  if (!interior_point(f, p)) return false;
-  BRepClass3d_SolidClassifier cls(solid, p, tol);
-  return cls.State() == TopAbs_IN || cls.State() == TopAbs_ON;
+  const std::vector<gp_Pnt> points = interior_points(f, 5);
+  int in = 0;
+  for (const auto& p : points) {
+    BRepClass3d_SolidClassifier cls(solid, p, tol);
+    in += cls.State() == TopAbs_IN || cls.State() == TopAbs_ON;
+  }
+  return 2 * in > static_cast<int>(points.size());
 }
 
 // True when the face lies inside one of the solids or on its boundary.

@@ -236,6 +236,29 @@ TEST_CASE("OpenVSP's blunt-trailing-edge wing keeps both skins and loses its pla
   CHECK(z_hi > 0.15);
 }
 
+TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay; their planes go", "[models]") {
+  // Component 1 is a pod (four skins, two planes inside) with a strut sewn
+  // at each side (one skin each, pinched to a line at the tip where the two
+  // sides of its boundary run along the same line with different
+  // parametrisations, and a planform plane). Split at the pinch, a strut's
+  // skin closes over its tip, so the repair takes out the four planes and
+  // nothing else; left whole, only the struts' removal with the planes
+  // closed the pod, and the struts' skins were left as open sheets.
+  LoadOptions o;
+  o.describe_only = true;
+  const Model model = load_model(test::model_path("tbw_sugar_openvsp.stp"), o);
+  const Preparation& p = model.info().preparation;
+  REQUIRE(p.components.size() == 7);
+  const Component& pod = p.components[0];
+  CHECK(pod.faces == 8);
+  CHECK(pod.bbox_max.y() == Approx(48.915).margin(0.01));
+  CHECK(pod.role == "solid");
+  CHECK(pod.faces_removed == 4);
+  for (const Component& c : p.components) CHECK(c.role == "solid");
+  // Every face taken out of any component lies inside one of the solids.
+  CHECK(p.internal_faces_removed == 11);
+}
+
 TEST_CASE("a T of two plates is imprinted: the junction curve is shared by three faces, no triangle twice") {
   // Base plate z = 0 (x 0..2, y 0..1); stem plate x = 1 standing on it (z 0..1).
   const TopoDS_Shape base = quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0});
