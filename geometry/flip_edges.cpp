@@ -3,6 +3,7 @@
 // parametrisation stretches (a wing skin: chordwise u, spanwise v), and its
 // obtuse triangles make the linear size map steep across their short height
 // (Eq. 11), which lowers sizes far from any feature.
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -54,7 +55,12 @@ int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
     const auto& x = bg.xyz;
     auto X = [&](int l) -> const Vec3& { return x[patch.vertex[l]]; };
     // Each pass flips disjoint pairs; a flip makes no angle smaller than the
-    // smallest of the pair, so passes end (bounded anyway).
+    // smallest of the pair, so passes end (bounded anyway). A pair is looked
+    // at again only when one of its four vertices belongs to a pair flipped
+    // since it was last looked at: nothing else changes its test (its
+    // triangles, their neighbours, the edge a flip would make), so the flips
+    // are those of looking at every pair, for a fraction of the work.
+    std::vector<char> touched(patch.vertex.size(), 1), touched_now(patch.vertex.size(), 0);
     for (int pass = 0; pass < 64; ++pass) {
       std::vector<char> done(patch.tris.size(), 0);
       int n = 0;
@@ -68,6 +74,9 @@ int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
           for (int j = 0; j < 3; ++j)
             if (patch.tris[s][j] != a && patch.tris[s][j] != b) d = patch.tris[s][j];
           if (d < 0) continue;
+          if (!(touched[a] || touched[b] || touched[c] || touched[d] || touched_now[a] || touched_now[b] ||
+                touched_now[c] || touched_now[d]))
+            continue;
           const int ga = patch.vertex[a], gb = patch.vertex[b], gc = patch.vertex[c], gd = patch.vertex[d];
           if (gc == gd || on_curve(edge_key(ga, gb)) || edge_of.count(edge_key(gc, gd))) continue;
           // Not Delaunay in space: the angles opposite (a, b) sum to more than pi.
@@ -85,10 +94,13 @@ int flip_to_delaunay(BackgroundMesh& bg, const Geometry& g) {
           edge_of.erase(edge_key(ga, gb));
           edge_of.emplace(edge_key(gc, gd), -1);
           done[t] = done[s] = 1;
+          touched_now[a] = touched_now[b] = touched_now[c] = touched_now[d] = 1;
           ++n;
         }
       }
       if (n == 0) break;
+      touched.swap(touched_now);
+      std::fill(touched_now.begin(), touched_now.end(), 0);
       flips += n;
       build_adjacency(patch);
     }
