@@ -249,12 +249,8 @@ std::vector<gp_Pnt> interior_points(const TopoDS_Face& f, int wanted) {
   return out;
 }
 
-// True when the face lies inside the solid or on its boundary: most of a few
-// points spread over it do. One point alone may sit where another body
-// touches the face (a jury strut's foot on a strut), or be misjudged by the
-// classifier that close to the boundary (a planform plane in a thin wing).
-bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
-  const std::vector<gp_Pnt> points = interior_points(f, 5);
+// True when most of the points lie inside the solid or on its boundary.
+bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid, double tol) {
   int in = 0;
   for (const auto& p : points) {
     BRepClass3d_SolidClassifier cls(solid, p, tol);
@@ -263,10 +259,20 @@ bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
   return 2 * in > static_cast<int>(points.size());
 }
 
-// True when the face lies inside one of the solids or on its boundary.
+// True when the face lies inside the solid or on its boundary: most of a few
+// points spread over it do. One point alone may sit where another body
+// touches the face (a jury strut's foot on a strut), or be misjudged by the
+// classifier that close to the boundary (a planform plane in a thin wing).
+bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
+  return mostly_inside(interior_points(f, 5), solid, tol);
+}
+
+// True when the face lies inside one of the solids or on its boundary
+// (inside_solid, its points found once).
 bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, double tol) {
+  const std::vector<gp_Pnt> points = interior_points(f, 5);
   for (const auto& s : solids)
-    if (inside_solid(f, s, tol)) return true;
+    if (mostly_inside(points, s, tol)) return true;
   return false;
 }
 
