@@ -5,6 +5,7 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -74,15 +75,43 @@ bool build(const SurfaceMesh& s, const std::vector<int>& ids, Tracked& t) {
   return true;
 }
 
+constexpr const char* kCrossesItself = "its mesh intersects itself";
+
+// The triangles of m that cross another triangle of m.
+std::vector<FI> crossing_triangles(const Mesh& m) {
+  std::set<FI> out;
+  PMP::self_intersections(m, boost::make_function_output_iterator([&out](const std::pair<FI, FI>& p) {
+                            out.insert(p.first);
+                            out.insert(p.second);
+                          }));
+  return {out.begin(), out.end()};
+}
+
 // Why `t` cannot take part in a union of volumes; empty when it can (it is
-// then oriented outward).
-std::string unfit(Tracked& t) {
+// then oriented outward). Its triangles that cross each other go to `crossing`.
+std::string unfit(Tracked& t, std::vector<FI>& crossing) {
   if (t.m.is_empty()) return "it has no triangles";
   if (!CGAL::is_closed(t.m)) return "its mesh is not closed";
-  if (PMP::does_self_intersect(t.m)) return "its mesh intersects itself";
+  crossing = crossing_triangles(t.m);
+  if (!crossing.empty()) {
+    // A skin that folds through itself: it bounds a volume where it does not
+    // cross, so the outward test looks at its extreme vertex only.
+    if (!PMP::is_outward_oriented(t.m)) PMP::reverse_face_orientations(t.m);
+    return kCrossesItself;
+  }
   if (!PMP::does_bound_a_volume(t.m)) PMP::orient_to_bound_a_volume(t.m);
   if (!PMP::does_bound_a_volume(t.m)) return "its mesh does not bound a volume";
   return {};
+}
+
+// True when every corner of the triangles `tris` of `t` lies strictly inside
+// the closed mesh `base`: a fold there is dropped by the union.
+bool inside_base(const Tracked& t, const std::vector<FI>& tris, const Mesh& base) {
+  const CGAL::Side_of_triangle_mesh<Mesh, K> side(base);
+  for (FI f : tris)
+    for (VI v : CGAL::vertices_around_face(t.m.halfedge(f), t.m))
+      if (side(t.m.point(v)) != CGAL::ON_BOUNDED_SIDE) return false;
+  return true;
 }
 
 // Carries the source triangle, CAD face and node through the corefinement.
@@ -339,7 +368,11 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   std::set<int> base_nodes;
   // Per CAD face, the source triangles near a cut: uv hints for the projection.
   std::map<int, std::set<int>> near_cut;
-  for (size_t i = 0; i < pieces.size(); ++i) {
+  // A piece whose skin folds through itself waits until every other piece is
+  // in the base: it joins only if its fold lies inside the base (the union
+  // drops it there) and the union is then free of crossings.
+  std::vector<size_t> waiting;
+  auto take = [&](size_t i, bool last_pass) {
     const bool is_part = i >= rest_pieces;
     auto fail = [&](const std::string& why) {
       if (is_part) out.failures[i - rest_pieces] = why;
@@ -347,20 +380,22 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     };
     auto part = std::make_unique<Tracked>();
     std::string why;
+    std::vector<FI> crossing;
     if (pieces[i].empty()) why = "it has no triangles";
     else if (!build(s, pieces[i], *part)) why = "its mesh is not manifold";
     for (VI v : part->m.vertices())
       if (why.empty() && base_nodes.count(part->node[v])) why = "its mesh shares nodes with the rest";
-    if (why.empty()) why = unfit(*part);
-    if (!why.empty()) {
-      fail(why);
-      continue;
-    }
+    if (why.empty()) why = unfit(*part, crossing);
+    const bool folded = why == kCrossesItself;
+    if (folded && !last_pass) return waiting.push_back(i);
+    if (folded && base && inside_base(*part, crossing, base->m)) why.clear();
+    else if (folded) why = "its mesh intersects itself outside the other components";
+    if (!why.empty()) return fail(why);
     for (VI v : part->m.vertices()) base_nodes.insert(part->node[v]);
     if (!base) {  // the start
       base = std::move(part);
       out.united += is_part;
-      continue;
+      return;
     }
     auto before = std::make_unique<Tracked>(*base);
     Follow follow;
@@ -370,22 +405,26 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     bool ok = false;
     try {
       ok = PMP::corefine_and_compute_union(base->m, part->m, base->m,
-                                           PMP::parameters::visitor(follow).throw_on_self_intersection(true),
+                                           PMP::parameters::visitor(follow).throw_on_self_intersection(!folded),
                                            PMP::parameters::default_values(),
                                            PMP::parameters::edge_is_constrained_map(cut_now));
+      if (ok && folded) ok = !PMP::does_self_intersect(base->m);
     } catch (const std::exception&) {
       ok = false;
     }
     if (!ok) {
-      fail("the corefinement of its mesh with the rest failed");
+      for (VI v : part->m.vertices()) base_nodes.erase(part->node[v]);
       base = std::move(before);
-      continue;
+      return fail(folded ? "its mesh intersects itself, and its union with the rest does too"
+                         : "the corefinement of its mesh with the rest failed");
     }
     out.united += is_part;
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
     base->m.remove_property_map(cut_now);
-  }
+  };
+  for (size_t i = 0; i < pieces.size(); ++i) take(i, false);
+  for (size_t i : waiting) take(i, true);
   if (!base) base = std::make_unique<Tracked>();
   remesh_bands(*base, s, node_h, near_cut, out);
   base->m.collect_garbage();

@@ -185,16 +185,23 @@ void count_self_intersections(const SurfaceMesh& m, const std::set<std::pair<int
                               MeshQuality& q) {
   const SelfIntersections si = find_self_intersections(m, size_t(1) << 20);
   q.self_intersections = si.pairs;
-  std::set<std::pair<int, int>> faces;
+  std::set<std::pair<int, int>> local, apart;
   for (const auto& [s, t] : si.kept) {
     const int fa = std::min(m.tri_face[s], m.tri_face[t]), fb = std::max(m.tri_face[s], m.tri_face[t]);
-    if (fa != fb && !neighbours.count({fa, fb})) continue;
+    if (fa != fb && !neighbours.count({fa, fb})) {
+      apart.insert({fa, fb});
+      continue;
+    }
     ++q.local_self_intersections;
-    faces.insert({fa, fb});
+    local.insert({fa, fb});
   }
-  for (const auto& [fa, fb] : faces) {
+  for (const auto& [fa, fb] : local) {
     if (q.intersecting_faces.size() >= 20) break;
     q.intersecting_faces.push_back({fa, fb});
+  }
+  for (const auto& [fa, fb] : apart) {
+    if (q.crossing_faces.size() >= 20) break;
+    q.crossing_faces.push_back({fa, fb});
   }
 }
 

@@ -53,6 +53,7 @@ struct MeshQuality {
   long long self_intersections = 0;       // pairs of triangles meeting beyond shared nodes
   long long local_self_intersections = 0; // of those, in one face or faces sharing a curve
   std::vector<std::array<int, 2>> intersecting_faces;  // face pairs with local intersections (first 20)
+  std::vector<std::array<int, 2>> crossing_faces;      // face pairs with the other intersections (first 20)
   double max_inner_node_distance = 0;     // nodes inside faces, from their surface
   double max_node_distance = 0;           // every corner, from its face's surface
   double size_conformity = 0;             // share of edges of conforming length

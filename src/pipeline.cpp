@@ -62,6 +62,18 @@ void warn_local_intersections(const MeshQuality& q, const WarningSink& warn) {
   warn(msg.str());
 }
 
+// Triangles of faces that share no curve crossing each other where the
+// components were united: the surface is not one closed body (exit 3).
+void warn_crossings(const MeshQuality& q, const Preparation& p, const WarningSink& warn) {
+  const long long n = q.self_intersections - q.local_self_intersections;
+  if (n == 0 || !p.union_requested || !p.not_united.empty()) return;
+  std::ostringstream msg;
+  msg << n << " pairs of triangles of faces that share no curve intersect (faces";
+  for (const auto& [a, b] : q.crossing_faces) msg << " " << a << "/" << b;
+  msg << "): the united surface crosses itself there (exit 3)";
+  warn(msg.str());
+}
+
 // Shares of the triangles and of the area whose target size is within 5% of h_min.
 void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r) {
   double n = 0, area = 0, total = 0;
@@ -229,6 +241,7 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
   for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
   warn_local_intersections(r.report.quality, warn);
+  warn_crossings(r.report.quality, model.info().preparation, warn);
   warn_h_min(r.report, r.sizes.h_min, warn);
 }
 

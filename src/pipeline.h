@@ -65,11 +65,13 @@ struct RunResult {
   std::vector<std::string> warnings;  // one line each, without the "sizemesh: warning: " prefix
   bool meshed() const { return report.mesh != nullptr; }
   MeshLabels labels() const { return label_faces(*model); }
-  // Partial: a face not meshed, or components left out of the union (their
-  // meshes overlap the rest: not one closed surface).
+  // Partial: a face not meshed, components left out of the union (their
+  // meshes overlap the rest: not one closed surface), or, where one surface
+  // was asked for, triangles that cross.
   int exit_code() const {
     const bool apart = model && !model->info().preparation.not_united.empty();
-    return mesh.failures.empty() && !apart ? kOk : kPartial;
+    const bool crossing = model && model->info().preparation.union_requested && report.quality.self_intersections > 0;
+    return mesh.failures.empty() && !apart && !crossing ? kOk : kPartial;
   }
 };
 

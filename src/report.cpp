@@ -107,6 +107,7 @@ nlohmann::json report_json(const RunReport& r) {
                  {"self_intersecting_pairs", q.self_intersections},
                  {"local_self_intersecting_pairs", q.local_self_intersections},
                  {"locally_intersecting_faces", q.intersecting_faces},
+                 {"crossing_faces", q.crossing_faces},
                  {"area", q.area},
                  {"max_inner_node_distance", q.max_inner_node_distance},
                  {"max_node_distance", q.max_node_distance},

@@ -142,6 +142,27 @@ TEST_CASE("a component the mesh-union option names is united at mesh level while
   CHECK(beyond.err == "sizemesh: error: --mesh-union 8: the model has 7 components (sizemesh --info lists them)\n");
 }
 
+TEST_CASE("a component whose skin folds through itself inside another is united at mesh level", "[models]") {
+  // The manta's component 4 meshes with crossing triangles (faces 65 to 68:
+  // its skin folds through itself), all inside component 6. The union drops
+  // the fold with the rest of what lies inside: one closed surface, nothing
+  // crossing.
+  const test::TempDir dir("union_fold");
+  const auto j = test::run_with_report(test::model_path("manta2_openvsp.stp") + " -q --mesh-union 4 -o " +
+                                           (dir / "manta.vtu"),
+                                       (dir / "r.json"), 0);
+  CHECK(j["preparation"]["not_united"].empty());
+  CHECK(j["preparation"]["components"][3]["route"] == "mesh-level union");
+  CHECK(j["mesh_union"]["united"] == 1);
+  CHECK(j["mesh_union"]["failed"] == 0);
+  const auto& m = j["mesh"];
+  CHECK(m["boundary_edges"] == 0);
+  CHECK(m["nonmanifold_edges"] == 0);
+  CHECK(m["orientation_conflicts"] == 0);
+  CHECK(m["self_intersecting_pairs"] == 0);
+  CHECK(m["failed_faces"].empty());
+}
+
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
   // Pegasus: one edge-face intersection of its untrimmed sheets runs for
   // minutes without asking whether to stop. The fuse runs in a child process
