@@ -36,6 +36,69 @@ struct FaceResult {
   double seconds_front = 0, seconds_optimise = 0;
 };
 
+// The inside of a face from its boundary `raw` (mesher uv): the front's
+// strategies, then the optimiser. Throws the kernel's Error.
+void mesh_inside(const FaceMesh& raw, FaceSurface& fs, const MeshOptions& o, FaceResult& r) {
+  const int face = fs.face();
+  Stopwatch clock;
+  FaceMesh steady = raw;
+  const bool curled = steady_boundary_normals(steady, fs) > 0;
+  const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;
+  const long long budget = front_step_budget(expected, raw.num_nodes());
+  // Strict runs first: no triangle turned against the surface, leftovers
+  // closed only by ears that face the surface; with the boundary normals
+  // steadied where the surface curls, then (if that changed any) without.
+  // If both leave a hole, a lenient run of the strategies whose loosest
+  // levels it changes (2 and 3), its leftovers closed by facing ears where
+  // they can be: a few inverted triangles rather than a hole.
+  struct Attempt {
+    const FaceMesh* boundary;
+    bool lenient;
+  };
+  std::vector<Attempt> attempts = {{&steady, false}};
+  if (curled) attempts.push_back({&raw, false});
+  attempts.push_back({&steady, true});
+  FrontResult fr;
+  auto fill = [&](bool lenient, int max_edges) {
+    return fill_front(r.mesh, fs, fr.open_edges, true, max_edges) ||
+           (lenient && fill_front(r.mesh, fs, fr.open_edges, false, max_edges));
+  };
+  for (const Attempt& a : attempts) {
+    for (int strategy = a.lenient ? 2 : 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
+      r.mesh = *a.boundary;
+      fr = advancing_front(r.mesh, fs, strategy, budget, a.lenient);
+      r.front_steps += fr.steps;
+      r.fronts_3d += fr.fronts_3d;
+      r.strategy = strategy;
+      // A few edges the front could not advance from: close them in place.
+      if (!fr.ok && fill(a.lenient, kSmallLeftover)) {
+        fr.ok = true;
+        r.filled = true;
+      }
+    }
+    // Before a hole: close the last strategy's leftover with ears.
+    if (!fr.ok && fill(a.lenient, kLargeLeftover)) {
+      fr.ok = true;
+      r.filled = true;
+    }
+    r.lenient = a.lenient;
+    if (fr.ok) break;
+  }
+  r.seconds_front = clock.lap();
+  if (!fr.ok) {
+    r.reason = fr.reason;
+  } else {
+    SplitBounds bounds;
+    bounds.deviation = o.deviation;
+    bounds.max_turn = face < static_cast<int>(o.max_turn.size()) ? o.max_turn[face] : 0.0;
+    bounds.h_floor = o.h_min;
+    optimise(r.mesh, fs, o.optimise_passes, bounds);
+    r.seconds_optimise = clock.lap();
+    for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
+    r.ok = true;
+  }
+}
+
 // One face, start to end; a face the geometry cannot mesh is returned with its
 // reason, not thrown (only a bug escapes).
 FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& cm, int face,
@@ -43,64 +106,7 @@ FaceResult mesh_face(const Geometry& g, const SizeFunction& h, const CurveMesh& 
   FaceResult r;
   FaceSurface fs(g, h, face);
   try {
-    Stopwatch clock;
-    const FaceMesh raw = face_boundary(g, cm, fs);
-    FaceMesh steady = raw;
-    const bool curled = steady_boundary_normals(steady, fs) > 0;
-    const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;
-    const long long budget = front_step_budget(expected, raw.num_nodes());
-    // Strict runs first: no triangle turned against the surface, leftovers
-    // closed only by ears that face the surface; with the boundary normals
-    // steadied where the surface curls, then (if that changed any) without.
-    // If both leave a hole, a lenient run of the strategies whose loosest
-    // levels it changes (2 and 3), its leftovers closed by facing ears where
-    // they can be: a few inverted triangles rather than a hole.
-    struct Attempt {
-      const FaceMesh* boundary;
-      bool lenient;
-    };
-    std::vector<Attempt> attempts = {{&steady, false}};
-    if (curled) attempts.push_back({&raw, false});
-    attempts.push_back({&steady, true});
-    FrontResult fr;
-    auto fill = [&](bool lenient, int max_edges) {
-      return fill_front(r.mesh, fs, fr.open_edges, true, max_edges) ||
-             (lenient && fill_front(r.mesh, fs, fr.open_edges, false, max_edges));
-    };
-    for (const Attempt& a : attempts) {
-      for (int strategy = a.lenient ? 2 : 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
-        r.mesh = *a.boundary;
-        fr = advancing_front(r.mesh, fs, strategy, budget, a.lenient);
-        r.front_steps += fr.steps;
-        r.fronts_3d += fr.fronts_3d;
-        r.strategy = strategy;
-        // A few edges the front could not advance from: close them in place.
-        if (!fr.ok && fill(a.lenient, kSmallLeftover)) {
-          fr.ok = true;
-          r.filled = true;
-        }
-      }
-      // Before a hole: close the last strategy's leftover with ears.
-      if (!fr.ok && fill(a.lenient, kLargeLeftover)) {
-        fr.ok = true;
-        r.filled = true;
-      }
-      r.lenient = a.lenient;
-      if (fr.ok) break;
-    }
-    r.seconds_front = clock.lap();
-    if (!fr.ok) {
-      r.reason = fr.reason;
-    } else {
-      SplitBounds bounds;
-      bounds.deviation = o.deviation;
-      bounds.max_turn = face < static_cast<int>(o.max_turn.size()) ? o.max_turn[face] : 0.0;
-      bounds.h_floor = o.h_min;
-      optimise(r.mesh, fs, o.optimise_passes, bounds);
-      r.seconds_optimise = clock.lap();
-      for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
-      r.ok = true;
-    }
+    mesh_inside(face_boundary(g, cm, fs), fs, o, r);
   } catch (const Error& e) {  // the kernel cannot evaluate the face, or its boundary is unusable
     r.reason = std::string("exception: ") + e.what();
   } catch (const std::bad_alloc&) {  // this face alone asked for too much: the others are kept
@@ -193,6 +199,29 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
   SurfaceMesh out;
   arena.execute([&] { out = mesh_in_arena(g, h, o); });
   return out;
+}
+
+bool mesh_within(const Geometry& g, const SizeFunction& h, FaceMesh& fm, const MeshOptions& o, std::string& reason) {
+  FaceResult r;
+  FaceSurface fs(g, h, fm.face);
+  try {
+    FaceMesh raw;
+    raw.face = fm.face;
+    for (int i = 0; i < fm.num_nodes(); ++i) {
+      const Vec2 uv = fs.to_mesher(fm.uv[i]);
+      raw.add_node(uv, fs.eval(uv), fm.global[i]);
+      raw.shared_xyz.back() = fm.shared_xyz[i];
+    }
+    raw.loops = fm.loops;
+    mesh_inside(raw, fs, o, r);
+  } catch (const Error& e) {
+    r.reason = std::string("exception: ") + e.what();
+  } catch (const std::bad_alloc&) {
+    r.reason = "out of memory while meshing this face";
+  }
+  reason = r.reason;
+  if (r.ok) fm = std::move(r.mesh);
+  return r.ok;
 }
 
 void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces) {

@@ -19,7 +19,10 @@
 // on the thread count.
 #pragma once
 
+#include <string>
+
 #include "geometry/geometry.h"
+#include "mesher/face_mesh.h"
 #include "mesher/surface_mesh.h"
 #include "sizing/params.h"
 #include "sizing/size_function.h"
@@ -27,6 +30,13 @@
 namespace sizemesh {
 
 SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o = {});
+
+// The inside of face fm.face meshed from the boundary fm holds (nodes with
+// uv in the surface's parameters, a global id and shared_xyz each; loops with
+// the face on their left in uv): the front, its strategies and the optimiser
+// of mesh_surface(). On success fm holds the mesh (uv the surface's, new
+// inner nodes with global id -1); else false and `reason`.
+bool mesh_within(const Geometry& g, const SizeFunction& h, FaceMesh& fm, const MeshOptions& o, std::string& reason);
 
 // Hands the mesher the accuracy the size map was built for: p's deviation
 // bound, phi_c per face (the turn an inner edge may make) and the map's h_min.

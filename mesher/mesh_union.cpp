@@ -20,6 +20,7 @@
 
 #include "geometry/triangle_bvh.h"
 #include "mesher/self_intersection.h"
+#include "mesher/snap.h"
 #include "mesher/target_sizes.h"
 
 namespace sizemesh {
@@ -141,41 +142,6 @@ struct Follow : PMP::Corefinement::Default_visitor<Mesh> {
   void after_vertex_copy(VI from, const Mesh& ms, VI to, Mesh& mt) { s->of(mt).node[to] = s->of(ms).node[from]; }
 };
 
-// The point nearest x on every one of `faces` (a surface, a curve where two
-// meet, a point where three do): Newton on the tangent planes, each step the
-// smallest move that puts x on all of them. uv holds a start per face and
-// ends as the point's uv there. False when a projection fails or the point
-// would move further than `reach`.
-bool snap(const Geometry& g, const std::vector<int>& faces, std::vector<Vec2>& uv, Vec3& x, double reach,
-          double tol) {
-  const Vec3 start = x;
-  const size_t k = faces.size();
-  for (int it = 0; it < 12; ++it) {
-    Eigen::MatrixXd n(k, 3);
-    Eigen::VectorXd d(k);
-    for (size_t i = 0; i < k; ++i) {
-      if (!g.project_to_face(faces[i], x, uv[i])) return false;
-      const SurfaceD1 s = g.eval_face(faces[i], uv[i]);
-      Vec3 normal = s.du.cross(s.dv);
-      if (!(normal.norm() > 0)) return false;
-      normal.normalize();
-      n.row(i) = normal.transpose();
-      d(i) = normal.dot(s.p);
-    }
-    // y = x - N^+ (N x - d): on every tangent plane, nearest to x.
-    const Eigen::VectorXd r = n * x - d;
-    const Vec3 step = n.completeOrthogonalDecomposition().solve(r);
-    x -= step;
-    if ((x - start).norm() > reach || !std::isfinite(x.x())) return false;
-    if (step.norm() <= tol) {
-      for (size_t i = 0; i < k; ++i)
-        if (!g.project_to_face(faces[i], x, uv[i])) return false;
-      return true;
-    }
-  }
-  return false;
-}
-
 // The triangles `ids` in pieces connected across edges: the closed ones
 // (every edge used twice), largest first, and the triangles of open ones.
 std::vector<std::vector<int>> closed_pieces(const SurfaceMesh& s, const std::vector<int>& ids, std::vector<int>& open) {
@@ -232,11 +198,30 @@ size_t crossing_pairs(const Mesh& m) {
 // The bands along the cuts (the triangles touching a cut node and one ring
 // more) remeshed to the size map's size there: CGAL's isotropic remeshing,
 // the cut curves and CAD face borders kept as constraints (their nodes slide
-// along them), B-rep points and nodes where three faces meet fixed. One call
-// per size class (a factor 1.25 apart), each over every band of that class.
-void remesh_bands(Tracked& t, const SurfaceMesh& s, const std::vector<double>& node_h,
+// along them), B-rep points and nodes where three faces meet fixed. A
+// periodic face counts as two halves of its period, so its seam stays a line
+// of edges (the cut faces' remesher walks the face's region in uv across it).
+// One call per size class (a factor 1.25 apart), each over every band of
+// that class.
+void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std::vector<double>& node_h,
                   std::map<int, std::set<int>>& near_cut, MeshUnionResult& out) {
   Mesh& m = t.m;
+  auto patch = m.add_property_map<FI, int>("f:patch", 0).first;
+  for (FI f : m.faces()) {
+    const int face = t.face[f], src = t.tri[f];
+    int half = 0;
+    if (src >= 0) {
+      const Vec2 c = (s.tri_uv[src][0] + s.tri_uv[src][1] + s.tri_uv[src][2]) / 3.0;
+      const UVBox box = g.face_uv_bounds(face);
+      for (int axis = 0; axis < 2; ++axis) {
+        const double period = axis == 0 ? g.face_period_u(face) : g.face_period_v(face);
+        if (!(period > 0)) continue;
+        const double w = c[axis] - box.lo[axis];
+        half |= (w - std::floor(w / period) * period >= 0.5 * period) << axis;
+      }
+    }
+    patch[f] = 4 * face + half;
+  }
   std::set<VI> ring;
   for (EI e : m.edges())
     if (t.cut[e]) ring.insert(m.vertex(e, 0)), ring.insert(m.vertex(e, 1));
@@ -294,13 +279,15 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const std::vector<double>& n
                              PMP::parameters::number_of_iterations(3)
                                  .edge_is_constrained_map(t.cut)
                                  .vertex_is_constrained_map(fixed)
-                                 .face_patch_map(t.face)
+                                 .face_patch_map(patch)
                                  .relax_constraints(true));
+    for (FI f : m.faces()) t.face[f] = patch[f] / 4;
     const size_t now = crossing_pairs(m);
     if (now > crossing) {
       m = before;
       t.attach();
       fixed = m.property_map<VI, bool>("v:fixed").first;
+      patch = m.property_map<FI, int>("f:patch").first;
       ++out.band_classes_undone;
     } else {
       crossing = now;
@@ -308,6 +295,7 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const std::vector<double>& n
     }
   }
   m.remove_property_map(fixed);
+  m.remove_property_map(patch);
 }
 
 // Nodes put on their CAD surfaces where the surfaces graze may cross the
@@ -426,7 +414,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (size_t i = 0; i < pieces.size(); ++i) take(i, false);
   for (size_t i : waiting) take(i, true);
   if (!base) base = std::make_unique<Tracked>();
-  remesh_bands(*base, s, node_h, near_cut, out);
+  remesh_bands(*base, s, g, node_h, near_cut, out);
   base->m.collect_garbage();
   Mesh& m = base->m;
 
@@ -603,6 +591,8 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     r.tri_uv.push_back(tri_uv[t]);
   }
   keep_apart(r, before_snap);
+  for (EI e : m.edges())
+    if (base->cut[e]) out.junction.push_back({used[id[m.vertex(e, 0)]], used[id[m.vertex(e, 1)]]});
   // Each junction node's distance from each of its surfaces, as it ends.
   for (auto& [v, on] : junction_faces) {
     const int n = used[id[v]];

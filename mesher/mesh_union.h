@@ -17,6 +17,7 @@
 //         filter first); the band remesh and projection in the band's size.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@ struct MeshUnionResult {
   int band_classes_undone = 0;        // size classes whose band remesh was undone (it made the surface cross itself)
   int junction_nodes_off = 0;         // of those, nodes left on the meshes (surfaces meeting at a grazing angle)
   double max_junction_gap = 0;        // largest distance of a junction node from either surface
+  std::vector<std::array<int, 2>> junction;  // the cut edges (node pairs) in the united mesh
 };
 
 MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeFunction& h,

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "mesher/cut_faces.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
@@ -128,7 +129,7 @@ namespace {
 
 // The components the B-rep union left out, united with the rest as meshes
 // (mesher/mesh_union.h); what it cannot take stays apart (exit 3).
-void unite_at_mesh_level(RunResult& r) {
+void unite_at_mesh_level(RunResult& r, const MeshOptions& meshing) {
   Model& model = *r.model;
   const Preparation& p = model.info().preparation;
   if (p.not_united.empty()) return;
@@ -145,6 +146,7 @@ void unite_at_mesh_level(RunResult& r) {
     if (const auto it = component_of.find(model.source_face(f)); it != component_of.end())
       parts[it->second].push_back(f);
   r.report.mesh_union = unite_meshes(r.mesh, model, *r.query, parts);
+  r.report.cut_faces = remesh_cut_faces(r.mesh, model, *r.query, meshing, r.report.mesh_union);
   for (size_t i = 0; i < left.size(); ++i) model.record_mesh_union(left[i], r.report.mesh_union.failures[i]);
 }
 
@@ -229,7 +231,7 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   r.mesh = mesh_surface(model, *r.query, meshing);                          // mesher/ (4.1)
   r.clock.lap("meshing");
   if (!model.info().preparation.not_united.empty()) {
-    unite_at_mesh_level(r);                                                  // mesher/mesh_union
+    unite_at_mesh_level(r, meshing);                                                // mesher/mesh_union
     r.clock.lap("mesh union");
   }
   warn_not_united(model.info().preparation, warn);

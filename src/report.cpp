@@ -128,7 +128,10 @@ nlohmann::json report_json(const RunReport& r) {
                        {"junction_nodes_off_surface", r.mesh_union.junction_nodes_off},
                        {"band_triangles", r.mesh_union.band_triangles},
                        {"band_classes_undone", r.mesh_union.band_classes_undone},
-                       {"max_junction_gap", r.mesh_union.max_junction_gap}};
+                       {"max_junction_gap", r.mesh_union.max_junction_gap},
+                       {"faces_remeshed", r.cut_faces.faces_remeshed},
+                       {"faces_kept", r.cut_faces.faces_kept},
+                       {"junction_nodes_placed", r.cut_faces.junction_nodes}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},

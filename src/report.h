@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/model.h"
+#include "mesher/cut_faces.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
 #include "mesher/surface_mesh.h"
@@ -35,6 +36,7 @@ struct RunReport {
   double at_h_min_share = 0, at_h_min_area_share = 0;
   QueryStats queries;
   MeshUnionResult mesh_union;  // components united at mesh level (none when every union was a B-rep one)
+  CutFacesResult cut_faces;    // the faces that union cut, meshed again
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
 };
 

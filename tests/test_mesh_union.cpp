@@ -150,4 +150,17 @@ TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the 
   CHECK(inside == 0);
   CHECK(junction == u.junction_nodes);
   CHECK(junction >= 2 * 2 * M_PI * radius / 0.1);
+  // The planes y = 0 and y = 1 and the cylinder's side (two regions, across
+  // its seam) meshed again from the junction, sampled to the size: every
+  // junction edge within a quarter of h = 0.1.
+  CHECK(r->report.cut_faces.faces_remeshed == 3);
+  CHECK(r->report.cut_faces.faces_kept == 0);
+  // Each circle keeps its node on the cylinder's seam; the others are new.
+  CHECK(r->report.cut_faces.junction_nodes == u.junction_nodes - 2);
+  REQUIRE(u.junction.size() == static_cast<size_t>(u.junction_nodes));  // two closed circles
+  for (const auto& [a, b] : u.junction) {
+    const double length = (r->mesh.xyz[a] - r->mesh.xyz[b]).norm();
+    CHECK(length > 0.075);
+    CHECK(length < 0.125);
+  }
 }

@@ -1,0 +1,682 @@
+#include "mesher/cut_faces.h"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "mesher/mesh_surface.h"
+#include "mesher/self_intersection.h"
+#include "mesher/snap.h"
+
+namespace sizemesh {
+namespace {
+
+constexpr int kRounds = 4;
+
+uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (uint64_t(uint32_t(a)) << 32) | uint32_t(b);
+}
+
+// uv shifted by whole periods of face f to lie nearest `near`.
+Vec2 unwrap(const Geometry& g, int f, Vec2 uv, const Vec2& near) {
+  for (int axis = 0; axis < 2; ++axis) {
+    const double period = axis == 0 ? g.face_period_u(f) : g.face_period_v(f);
+    if (period > 0) uv[axis] += period * std::round((near[axis] - uv[axis]) / period);
+  }
+  return uv;
+}
+
+// A triangle's corners in face f's uv, shifted by whole periods into the
+// period that holds its centroid: a node on the seam takes the side of the
+// triangle it is a corner of.
+std::array<Vec2, 3> canonical_uv(const Geometry& g, int f, std::array<Vec2, 3> u) {
+  const Vec2 c = (u[0] + u[1] + u[2]) / 3.0;
+  const Vec2 lo = g.face_uv_bounds(f).lo;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double period = axis == 0 ? g.face_period_u(f) : g.face_period_v(f);
+    if (!(period > 0)) continue;
+    const double shift = -std::floor((c[axis] - lo[axis]) / period) * period;
+    for (Vec2& x : u) x[axis] += shift;
+  }
+  return u;
+}
+
+// One junction polyline between two corners, and its new inner nodes.
+struct Chain {
+  std::vector<int> nodes;  // first to last; first == last when it closes on itself
+  int fa = 0, fb = 0;      // the faces on either side
+  bool usable = false;     // two faces, the same all along, with the nodes' uv on both
+  std::vector<Vec3> x;     // new inner nodes: position, uv on fa and fb, node id
+  std::vector<Vec2> uva, uvb;
+  std::vector<int> id;
+};
+
+// The mesh's edges, nodes and junction, read once.
+struct Topology {
+  std::unordered_map<uint64_t, std::vector<int>> edge_tris;
+  std::vector<std::vector<int>> node_faces;
+  std::unordered_map<uint64_t, Vec2> uv_at;  // (node, face) -> uv in a triangle of that face
+  std::vector<std::vector<int>> junction_next;
+
+  std::vector<char> on_seam;
+
+  Topology(const SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction) {
+    node_faces.resize(s.xyz.size());
+    junction_next.resize(s.xyz.size());
+    for (size_t t = 0; t < s.tris.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = s.tris[t][k], f = s.tri_face[t];
+        edge_tris[edge_key(a, s.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
+        auto& faces = node_faces[a];
+        if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+        uv_at.emplace(key(a, f), s.tri_uv[t][k]);
+      }
+    // Nodes on a seam: their uv in one face span more than half a period.
+    on_seam.assign(s.xyz.size(), 0);
+    std::unordered_map<uint64_t, std::array<Vec2, 2>> span;  // (node, face) -> uv min, max
+    for (size_t t = 0; t < s.tris.size(); ++t) {
+      if (!(g.face_period_u(s.tri_face[t]) > 0) && !(g.face_period_v(s.tri_face[t]) > 0)) continue;
+      const std::array<Vec2, 3> corners = canonical_uv(g, s.tri_face[t], s.tri_uv[t]);
+      for (int k = 0; k < 3; ++k) {
+        const Vec2& uv = corners[k];
+        auto [it, fresh] = span.emplace(key(s.tris[t][k], s.tri_face[t]), std::array<Vec2, 2>{uv, uv});
+        it->second[0] = it->second[0].cwiseMin(uv);
+        it->second[1] = it->second[1].cwiseMax(uv);
+      }
+    }
+    for (const auto& [k, box] : span) {
+      const int f = static_cast<int>(k & 0xffffffffu), n = static_cast<int>(k >> 32);
+      const Vec2 width = box[1] - box[0];
+      if ((g.face_period_u(f) > 0 && width.x() > 0.5 * g.face_period_u(f)) ||
+          (g.face_period_v(f) > 0 && width.y() > 0.5 * g.face_period_v(f)))
+        on_seam[n] = 1;
+    }
+    std::unordered_set<uint64_t> seen;
+    for (const auto& [a, b] : junction)
+      if (a != b && edge_tris.count(edge_key(a, b)) && seen.insert(edge_key(a, b)).second) {
+        junction_next[a].push_back(b);
+        junction_next[b].push_back(a);
+      }
+  }
+  static uint64_t key(int n, int f) { return (uint64_t(uint32_t(n)) << 32) | uint32_t(f); }
+  const Vec2* uv(int n, int f) const {
+    const auto it = uv_at.find(key(n, f));
+    return it == uv_at.end() ? nullptr : &it->second;
+  }
+  // Where a junction ends or branches, meets a CAD curve or a third face, or
+  // crosses a seam (a face's loop passes it twice).
+  bool corner(const SurfaceMesh& s, int n) const {
+    return junction_next[n].size() != 2 || node_faces[n].size() >= 3 || s.node_dim[n] <= 1 || on_seam[n];
+  }
+};
+
+// The junction in chains from corner to corner (or closed on themselves).
+std::vector<Chain> junction_chains(const SurfaceMesh& s, const Topology& topo) {
+  std::vector<Chain> out;
+  std::unordered_set<uint64_t> done;
+  for (size_t a = 0; a < topo.junction_next.size(); ++a)
+    for (int b : topo.junction_next[a]) {
+      if (done.count(edge_key(static_cast<int>(a), b))) continue;
+      std::vector<int> path{static_cast<int>(a), b};
+      done.insert(edge_key(static_cast<int>(a), b));
+      bool closed = false;
+      // Forward from b, then backward from a, to a corner.
+      for (int side = 0; side < 2 && !closed; ++side) {
+        if (side == 1) std::reverse(path.begin(), path.end());
+        while (!topo.corner(s, path.back())) {
+          const int cur = path.back(), prev = path[path.size() - 2];
+          int next = -1;
+          for (int c : topo.junction_next[cur])
+            if (c != prev) next = c;
+          if (next < 0 || done.count(edge_key(cur, next))) {
+            closed = next == path.front();
+            if (closed) path.push_back(next);
+            break;
+          }
+          done.insert(edge_key(cur, next));
+          path.push_back(next);
+          if (next == path.front()) {
+            closed = true;
+            break;
+          }
+        }
+      }
+      Chain c;
+      c.nodes = std::move(path);
+      out.push_back(std::move(c));
+    }
+  return out;
+}
+
+// The chain's faces and its nodes sampled again to the size map: as many
+// segments as the integral of 1/h along it (Eq. 1a-1b), each new node put on
+// both surfaces.
+void resample(Chain& c, const SurfaceMesh& s, const Topology& topo, const Geometry& g, const SizeFunction& h,
+              double tol) {
+  const auto& first = topo.edge_tris.at(edge_key(c.nodes[0], c.nodes[1]));
+  if (first.size() != 2 || s.tri_face[first[0]] == s.tri_face[first[1]]) return;
+  c.fa = s.tri_face[first[0]];
+  c.fb = s.tri_face[first[1]];
+  for (size_t i = 0; i + 1 < c.nodes.size(); ++i) {
+    const auto& tris = topo.edge_tris.at(edge_key(c.nodes[i], c.nodes[i + 1]));
+    if (tris.size() != 2) return;
+    const int x = s.tri_face[tris[0]], y = s.tri_face[tris[1]];
+    if (!((x == c.fa && y == c.fb) || (x == c.fb && y == c.fa))) return;
+  }
+  const size_t n = c.nodes.size();
+  std::vector<Vec2> ua(n), ub(n);
+  std::vector<double> w(n);
+  int hint = -1;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 *a = topo.uv(c.nodes[i], c.fa), *b = topo.uv(c.nodes[i], c.fb);
+    if (!a || !b) return;
+    ua[i] = i ? unwrap(g, c.fa, *a, ua[i - 1]) : *a;
+    ub[i] = i ? unwrap(g, c.fb, *b, ub[i - 1]) : *b;
+    const double size = h.at(c.fa, ua[i], hint);
+    if (!(size > 0) || !std::isfinite(size)) return;
+    w[i] = 1.0 / size;
+  }
+  std::vector<double> along(n, 0.0);
+  for (size_t i = 1; i < n; ++i)
+    along[i] = along[i - 1] + (s.xyz[c.nodes[i]] - s.xyz[c.nodes[i - 1]]).norm() * 0.5 * (w[i] + w[i - 1]);
+  const bool closed = c.nodes.front() == c.nodes.back();
+  const int segments = std::max(closed ? 3 : 1, static_cast<int>(std::lround(along.back())));
+  size_t i = 0;
+  for (int k = 1; k < segments; ++k) {
+    const double at = along.back() * k / segments;
+    while (i + 2 < n && along[i + 1] < at) ++i;
+    const double span = along[i + 1] - along[i];
+    const double t = span > 0 ? std::clamp((at - along[i]) / span, 0.0, 1.0) : 0.0;
+    Vec3 x = (1 - t) * s.xyz[c.nodes[i]] + t * s.xyz[c.nodes[i + 1]];
+    std::vector<Vec2> uv{(1 - t) * ua[i] + t * ua[i + 1], (1 - t) * ub[i] + t * ub[i + 1]};
+    const double reach = 0.5 / std::max(w[i], w[i + 1]);
+    // Surfaces that meet at a grazing angle may have no point within reach
+    // on both: the chain keeps its nodes.
+    if (!snap(g, {c.fa, c.fb}, uv, x, reach, tol)) return;
+    c.x.push_back(x);
+    c.uva.push_back(uv[0]);
+    c.uvb.push_back(uv[1]);
+  }
+  c.usable = true;
+}
+
+// True when the loops, as polygons in uv, cross or touch nowhere but at the
+// shared ends of consecutive edges (a junction that leaves the face's
+// parameter domain where it meets a CAD curve at a grazing angle does not).
+bool simple_loops(const FaceMesh& fm) {
+  struct Seg {
+    Vec2 a, b;
+    int na, nb;
+  };
+  std::vector<Seg> seg;
+  for (const auto& loop : fm.loops)
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const int a = loop[i], b = loop[(i + 1) % loop.size()];
+      seg.push_back({fm.uv[a], fm.uv[b], a, b});
+    }
+  auto cross = [](const Vec2& o, const Vec2& p, const Vec2& q) {
+    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+  };
+  std::sort(seg.begin(), seg.end(),
+            [](const Seg& x, const Seg& y) { return std::min(x.a.x(), x.b.x()) < std::min(y.a.x(), y.b.x()); });
+  for (size_t i = 0; i < seg.size(); ++i) {
+    const Seg& p = seg[i];
+    if ((p.a - p.b).squaredNorm() == 0) return false;
+    const double right = std::max(p.a.x(), p.b.x());
+    for (size_t j = i + 1; j < seg.size() && std::min(seg[j].a.x(), seg[j].b.x()) <= right; ++j) {
+      const Seg& q = seg[j];
+      if (std::min(p.a.y(), p.b.y()) > std::max(q.a.y(), q.b.y()) ||
+          std::min(q.a.y(), q.b.y()) > std::max(p.a.y(), p.b.y()))
+        continue;
+      const bool shares = p.na == q.na || p.na == q.nb || p.nb == q.na || p.nb == q.nb;
+      const double d1 = cross(p.a, p.b, q.a), d2 = cross(p.a, p.b, q.b);
+      const double d3 = cross(q.a, q.b, p.a), d4 = cross(q.a, q.b, p.b);
+      if (shares) {
+        // Edges from a shared node folding back onto each other.
+        if (d1 == 0 && d2 == 0) {
+          const Vec2 o = p.na == q.na || p.na == q.nb ? p.a : p.b;
+          const Vec2 u = (p.na == q.na || p.na == q.nb ? p.b : p.a) - o;
+          const Vec2 v = (q.na == p.na || q.na == p.nb ? q.b : q.a) - o;
+          if (u.dot(v) > 0) return false;
+        }
+        continue;
+      }
+      if (((d1 > 0) != (d2 > 0) || d1 == 0 || d2 == 0) && ((d3 > 0) != (d4 > 0) || d3 == 0 || d4 == 0)) return false;
+    }
+  }
+  return true;
+}
+
+// A face's regions as the face mesher takes them: boundary loops (face on
+// the left in uv) with the substituted chains' new nodes in place of their
+// old ones. Empty when a region's boundary cannot be walked (a pole, a
+// pinched corner) or holds no single outer loop.
+struct Region {
+  FaceMesh boundary;
+  bool flip = false;  // the face's triangles run clockwise in uv
+};
+std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f, const std::vector<int>& tris,
+                                 const std::vector<Chain>& chains, const std::vector<int>& chain_of_edge_owner,
+                                 const std::unordered_map<uint64_t, int>& chain_of_edge, bool& ok) {
+  ok = false;
+  // Corners: a node once per period of a periodic face (a seam's nodes twice).
+  const double period[2] = {g.face_period_u(f), g.face_period_v(f)};
+  std::vector<int> node;
+  std::vector<Vec2> uv;
+  std::unordered_map<int, std::vector<int>> of_node;
+  auto corner = [&](int n, const Vec2& at) {
+    auto& list = of_node[n];
+    for (int c : list) {
+      bool same = true;
+      for (int axis = 0; axis < 2; ++axis)
+        same = same && (!(period[axis] > 0) || std::abs(uv[c][axis] - at[axis]) < 0.25 * period[axis]);
+      if (same) return c;
+    }
+    list.push_back(static_cast<int>(node.size()));
+    node.push_back(n);
+    uv.push_back(at);
+    return list.back();
+  };
+  std::vector<std::array<Vec2, 3>> tuv;
+  double area = 0;
+  for (int t : tris) {
+    const std::array<Vec2, 3> u = canonical_uv(g, f, s.tri_uv[t]);
+    tuv.push_back(u);
+    area += (u[1] - u[0]).x() * (u[2] - u[0]).y() - (u[1] - u[0]).y() * (u[2] - u[0]).x();
+  }
+  const bool flip = area < 0;
+  std::vector<std::array<int, 3>> ct;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const int t = tris[i];
+    std::array<int, 3> c{corner(s.tris[t][0], tuv[i][0]), corner(s.tris[t][1], tuv[i][1]),
+                         corner(s.tris[t][2], tuv[i][2])};
+    if (flip) std::swap(c[1], c[2]);
+    ct.push_back(c);
+  }
+  std::unordered_map<uint64_t, int> directed;
+  auto dkey = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  for (const auto& c : ct)
+    for (int k = 0; k < 3; ++k)
+      if (++directed[dkey(c[k], c[(k + 1) % 3])] > 1) return {};
+  std::vector<int> next(node.size(), -1);
+  std::vector<int> parent(node.size());
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& c : ct) {
+    parent[find(c[1])] = find(c[0]);
+    parent[find(c[2])] = find(c[0]);
+    for (int k = 0; k < 3; ++k) {
+      const int a = c[k], b = c[(k + 1) % 3];
+      if (directed.count(dkey(b, a))) continue;
+      if (next[a] >= 0) return {};  // two boundary edges leave one corner
+      next[a] = b;
+    }
+  }
+  // Loops, each with its region (the root of its corners).
+  std::map<int, std::vector<std::vector<int>>> loops;
+  std::vector<char> walked(node.size(), 0);
+  for (size_t start = 0; start < node.size(); ++start) {
+    if (next[start] < 0 || walked[start]) continue;
+    std::vector<int> loop;
+    for (int c = static_cast<int>(start); !walked[c]; c = next[c]) {
+      walked[c] = 1;
+      loop.push_back(c);
+      if (next[c] < 0) return {};
+    }
+    if (loop.back() < 0 || next[loop.back()] != static_cast<int>(start) || loop.size() < 3) return {};
+    loops[find(static_cast<int>(start))].push_back(std::move(loop));
+  }
+  std::vector<Region> out;
+  for (auto& [root, list] : loops) {
+    // The outer loop first: the one loop of positive area.
+    std::vector<double> a(list.size(), 0.0);
+    int positive = 0;
+    for (size_t l = 0; l < list.size(); ++l) {
+      const auto& loop = list[l];
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const Vec2 &p = uv[loop[i]], &q = uv[loop[(i + 1) % loop.size()]];
+        a[l] += p.x() * q.y() - p.y() * q.x();
+      }
+      positive += a[l] > 0;
+    }
+    if (positive != 1) return {};
+    const size_t outer = std::max_element(a.begin(), a.end()) - a.begin();
+    std::swap(list[0], list[outer]);
+    Region r;
+    r.flip = flip;
+    r.boundary.face = f;
+    for (const auto& loop : list) {
+      // Start where no substituted chain runs through.
+      size_t start = loop.size();
+      for (size_t i = 0; i < loop.size() && start == loop.size(); ++i)
+        if (chain_of_edge_owner[node[loop[i]]] < 0) start = i;
+      if (start == loop.size()) return {};
+      std::vector<int> ids;
+      auto add = [&](int id, const Vec2& at, const Vec3& x) {
+        SurfaceSample none;  // mesh_within() evaluates the surface
+        none.p = none.du = none.dv = none.n = Vec3::Zero();
+        ids.push_back(r.boundary.add_node(at, none, id));
+        r.boundary.shared_xyz.back() = x;
+      };
+      for (size_t step = 0; step < loop.size();) {
+        const int c = loop[(start + step) % loop.size()];
+        const int d = loop[(start + step + 1) % loop.size()];
+        add(node[c], uv[c], s.xyz[node[c]]);
+        const auto it = chain_of_edge.find(edge_key(node[c], node[d]));
+        if (it == chain_of_edge.end()) {
+          ++step;
+          continue;
+        }
+        const Chain& ch = chains[it->second];
+        const size_t m = ch.nodes.size();
+        const bool forward = ch.nodes[0] == node[c] && ch.nodes[1] == node[d];
+        if (!forward && !(ch.nodes[m - 1] == node[c] && ch.nodes[m - 2] == node[d])) return {};
+        // The old nodes along the chain must be the loop's next corners.
+        for (size_t j = 1; j + 1 < m; ++j)
+          if (node[loop[(start + step + j) % loop.size()]] != ch.nodes[forward ? j : m - 1 - j]) return {};
+        Vec2 prev = uv[c];
+        const size_t k = ch.x.size();
+        for (size_t j = 0; j < k; ++j) {
+          const size_t q = forward ? j : k - 1 - j;
+          const Vec2 at = unwrap(g, f, f == ch.fa ? ch.uva[q] : ch.uvb[q], prev);
+          add(ch.id[q], at, ch.x[q]);
+          prev = at;
+        }
+        step += m - 1;
+      }
+      if (ids.size() < 3) return {};
+      r.boundary.loops.push_back(std::move(ids));
+    }
+    if (!simple_loops(r.boundary)) return {};
+    out.push_back(std::move(r));
+  }
+  ok = !out.empty();
+  return out;
+}
+
+// Boundary plus non-manifold edges: a rebuilt mesh must not have more.
+size_t open_edges(const SurfaceMesh& s) {
+  std::unordered_map<uint64_t, int> uses;
+  for (const auto& t : s.tris)
+    for (int k = 0; k < 3; ++k) ++uses[edge_key(t[k], t[(k + 1) % 3])];
+  size_t n = 0;
+  for (const auto& [e, u] : uses) n += u != 2;
+  return n;
+}
+
+// Nodes at one point merged (a cut that meets a CAD curve makes one on each
+// side of it), and the triangles that collapse with them dropped; the
+// junction's edges follow. Nothing changes when a merge would open an edge.
+void merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction, double tol) {
+  std::vector<int> to(s.xyz.size());
+  for (size_t i = 0; i < to.size(); ++i) to[i] = static_cast<int>(i);
+  auto find = [&](int i) {
+    while (to[i] != i) i = to[i] = to[to[i]];
+    return i;
+  };
+  bool any = false;
+  for (const auto& t : s.tris)
+    for (int k = 0; k < 3; ++k) {
+      int a = t[k], b = t[(k + 1) % 3];
+      if ((s.xyz[a] - s.xyz[b]).norm() > tol) continue;
+      if (s.node_dim[b] < s.node_dim[a]) std::swap(a, b);  // the node on a B-rep point or curve stays
+      const int ra = find(a), rb = find(b);
+      if (ra == rb) continue;
+      to[rb] = ra;
+      any = true;
+    }
+  if (!any) return;
+  SurfaceMesh m = s;
+  m.tris.clear(), m.tri_face.clear(), m.tri_uv.clear();
+  for (size_t t = 0; t < s.tris.size(); ++t) {
+    std::array<int, 3> tr{find(s.tris[t][0]), find(s.tris[t][1]), find(s.tris[t][2])};
+    if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) continue;
+    m.tris.push_back(tr);
+    m.tri_face.push_back(s.tri_face[t]);
+    m.tri_uv.push_back(s.tri_uv[t]);
+  }
+  if (open_edges(m) > open_edges(s)) return;
+  s = std::move(m);
+  std::vector<std::array<int, 2>> moved;
+  for (const auto& [a, b] : junction)
+    if (find(a) != find(b)) moved.push_back({find(a), find(b)});
+  junction = std::move(moved);
+}
+
+// The junction's nodes, and each one's largest distance from the surfaces
+// of the faces around it; `off` is the distance that counts as off them.
+void measure_junction(const SurfaceMesh& s, const Geometry& g, MeshUnionResult& u, double off) {
+  std::map<int, std::map<int, Vec2>> faces_of;  // junction node -> face -> uv there
+  std::set<int> nodes;
+  for (const auto& [a, b] : u.junction) nodes.insert(a), nodes.insert(b);
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (nodes.count(s.tris[t][k])) faces_of[s.tris[t][k]].emplace(s.tri_face[t], s.tri_uv[t][k]);
+  u.junction_nodes = static_cast<int>(nodes.size());
+  u.max_junction_gap = 0;
+  u.junction_nodes_off = 0;
+  for (const auto& [n, faces] : faces_of) {
+    double gap = 0;
+    for (auto [f, uv] : faces)
+      gap = g.project_to_face(f, s.xyz[n], uv) ? std::max(gap, (g.eval_face(f, uv).p - s.xyz[n]).norm()) : HUGE_VAL;
+    u.max_junction_gap = std::max(u.max_junction_gap, gap);
+    u.junction_nodes_off += gap > off;
+  }
+}
+
+}  // namespace
+
+CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFunction& h, const MeshOptions& o,
+                                MeshUnionResult& u) {
+  CutFacesResult out;
+  std::vector<std::array<int, 2>> junction = u.junction;
+  if (junction.empty()) return out;
+  Eigen::AlignedBox3d box;
+  for (const Vec3& x : s.xyz) box.extend(x);
+  const double tol = 1e-13 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
+  merge_coincident(s, junction, 1e3 * tol);
+  const Topology topo(s, g, junction);
+  std::vector<Chain> chains = junction_chains(s, topo);
+  std::vector<Vec3> xyz = s.xyz;
+  for (Chain& c : chains) {
+    if (c.nodes.size() < 2) continue;
+    resample(c, s, topo, g, h, tol);
+    for (const Vec3& x : c.x) {
+      c.id.push_back(static_cast<int>(xyz.size()));
+      xyz.push_back(x);
+    }
+  }
+  std::set<int> cut;  // the faces on either side of a junction
+  for (const Chain& c : chains)
+    for (size_t j = 0; j + 1 < c.nodes.size(); ++j)
+      for (int t : topo.edge_tris.at(edge_key(c.nodes[j], c.nodes[j + 1]))) cut.insert(s.tri_face[t]);
+  std::map<int, std::vector<int>> tris_of;
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    if (cut.count(s.tri_face[t])) tris_of[s.tri_face[t]].push_back(static_cast<int>(t));
+
+  const size_t open_before = open_edges(s);
+  const long long crossing_before = find_self_intersections(s, 0).pairs;
+  std::set<int> kept;        // faces left with their triangles
+  std::set<size_t> frozen;   // chains that keep their nodes
+  for (int round = 0; round < kRounds; ++round) {
+    // Chains substituted: both faces meshed again. A face whose boundary
+    // cannot be walked keeps its triangles; that changes which chains are
+    // substituted, so until nothing changes.
+    std::vector<int> owner(xyz.size(), -1);
+    std::unordered_map<uint64_t, int> chain_of_edge;
+    std::map<int, std::vector<Region>> regions;
+    for (bool changed = true; changed;) {
+      changed = false;
+      std::fill(owner.begin(), owner.end(), -1);
+      chain_of_edge.clear();
+      for (size_t k = 0; k < chains.size(); ++k) {
+        const Chain& c = chains[k];
+        if (!c.usable || frozen.count(k) || kept.count(c.fa) || kept.count(c.fb)) continue;
+        for (size_t j = 0; j + 1 < c.nodes.size(); ++j) chain_of_edge[edge_key(c.nodes[j], c.nodes[j + 1])] = k;
+        for (size_t j = 1; j + 1 < c.nodes.size(); ++j) owner[c.nodes[j]] = static_cast<int>(k);
+      }
+      regions.clear();
+      for (const auto& [f, tris] : tris_of) {
+        if (kept.count(f)) continue;
+        bool ok = false;
+        auto r = face_regions(s, g, f, tris, chains, owner, chain_of_edge, ok);
+        if (!ok) {
+          // First with its junctions' old nodes, then as it is.
+          bool froze = false;
+          for (size_t k = 0; k < chains.size(); ++k)
+            if ((chains[k].fa == f || chains[k].fb == f) && chains[k].usable) froze = frozen.insert(k).second || froze;
+          if (!froze) kept.insert(f);
+          changed = true;
+          break;
+        }
+        regions[f] = std::move(r);
+      }
+    }
+    // Every region meshed (in parallel: faces are independent).
+    std::vector<Region*> all;
+    for (auto& [f, list] : regions)
+      for (Region& r : list) all.push_back(&r);
+    std::vector<char> meshed(all.size(), 0);
+    tbb::parallel_for(size_t(0), all.size(), [&](size_t i) {
+      std::string why;
+      meshed[i] = mesh_within(g, h, all[i]->boundary, o, why);
+    });
+    bool failed = false;
+    for (size_t i = 0; i < all.size(); ++i)
+      if (!meshed[i]) kept.insert(all[i]->boundary.face), failed = true;
+    if (failed) continue;
+
+    // The new mesh: the faces meshed again replace their triangles.
+    SurfaceMesh r;
+    r.failures = s.failures;
+    r.stats = s.stats;
+    r.xyz = xyz;
+    r.node_dim = s.node_dim;
+    r.node_entity = s.node_entity;
+    for (const Chain& c : chains)
+      for (size_t j = 0; j < c.id.size(); ++j) {
+        r.node_dim.push_back(2);
+        r.node_entity.push_back(std::min(c.fa, c.fb));
+      }
+    std::vector<std::array<int, 3>> tris;
+    std::vector<int> tri_face, fresh;
+    std::vector<std::array<Vec2, 3>> tri_uv;
+    for (size_t t = 0; t < s.tris.size(); ++t)
+      if (!regions.count(s.tri_face[t])) {
+        tris.push_back(s.tris[t]);
+        tri_face.push_back(s.tri_face[t]);
+        tri_uv.push_back(s.tri_uv[t]);
+      }
+    for (const auto& [f, list] : regions)
+      for (const Region& reg : list) {
+        const FaceMesh& fm = reg.boundary;
+        std::vector<int> id(fm.num_nodes());
+        for (int i = 0; i < fm.num_nodes(); ++i) {
+          if (fm.global[i] >= 0) {
+            id[i] = fm.global[i];
+            continue;
+          }
+          id[i] = static_cast<int>(r.xyz.size());
+          r.xyz.push_back(fm.s[i].p);
+          r.node_dim.push_back(2);
+          r.node_entity.push_back(f);
+        }
+        for (const auto& t : fm.tris) {
+          std::array<int, 3> gt{id[t[0]], id[t[1]], id[t[2]]};
+          std::array<Vec2, 3> uv{fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]]};
+          if (gt[0] == gt[1] || gt[1] == gt[2] || gt[0] == gt[2]) continue;  // on a pole
+          if (reg.flip) std::swap(gt[1], gt[2]), std::swap(uv[1], uv[2]);
+          fresh.push_back(static_cast<int>(tris.size()));
+          tris.push_back(gt);
+          tri_face.push_back(f);
+          tri_uv.push_back(uv);
+        }
+      }
+    // Triangles by face, in their order; unused nodes dropped, the others in their order.
+    std::vector<int> order(tris.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tri_face[a] < tri_face[b]; });
+    std::vector<int> used(r.xyz.size(), -1);
+    for (const auto& t : tris)
+      for (int n : t) used[n] = 0;
+    SurfaceMesh m;
+    m.failures = r.failures;
+    m.stats = r.stats;
+    for (size_t n = 0; n < used.size(); ++n)
+      if (used[n] == 0) {
+        used[n] = static_cast<int>(m.xyz.size());
+        m.xyz.push_back(r.xyz[n]);
+        m.node_dim.push_back(r.node_dim[n]);
+        m.node_entity.push_back(r.node_entity[n]);
+      }
+    std::vector<char> is_fresh(tris.size(), 0);
+    for (int t : fresh) is_fresh[t] = 1;
+    std::vector<char> fresh_sorted;
+    for (int t : order) {
+      m.tris.push_back({used[tris[t][0]], used[tris[t][1]], used[tris[t][2]]});
+      m.tri_face.push_back(tri_face[t]);
+      m.tri_uv.push_back(tri_uv[t]);
+      fresh_sorted.push_back(is_fresh[t]);
+    }
+    if (open_edges(m) > open_before) {
+      // Faces whose new triangles leave an edge open or used more than twice
+      // keep theirs next round.
+      std::unordered_map<uint64_t, std::vector<int>> uses;
+      for (size_t t = 0; t < m.tris.size(); ++t)
+        for (int k = 0; k < 3; ++k) uses[edge_key(m.tris[t][k], m.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
+      bool blamed = false;
+      for (const auto& [e, u] : uses)
+        if (u.size() != 2)
+          for (int t : u)
+            if (fresh_sorted[t]) blamed = kept.insert(m.tri_face[t]).second || blamed;
+      if (!blamed) return out;
+      continue;
+    }
+    // New triangles that cross others: their faces keep their triangles next round.
+    const SelfIntersections hits = find_self_intersections(m, size_t(1) << 16);
+    if (hits.pairs > crossing_before) {
+      // Faces with new triangles in a crossing keep theirs next round.
+      bool blamed = false;
+      for (const auto& [a, b] : hits.kept)
+        for (int t : {a, b})
+          if (fresh_sorted[t]) blamed = kept.insert(m.tri_face[t]).second || blamed;
+      if (!blamed) return out;
+      continue;
+    }
+    // The junction as it ends: each chain's new nodes or its old ones.
+    std::vector<std::array<int, 2>> ends;
+    for (size_t k = 0; k < chains.size(); ++k) {
+      const Chain& c = chains[k];
+      const bool substituted = c.usable && !frozen.count(k) && !kept.count(c.fa) && !kept.count(c.fb);
+      std::vector<int> path = c.nodes;
+      if (substituted) {
+        path = {c.nodes.front()};
+        path.insert(path.end(), c.id.begin(), c.id.end());
+        path.push_back(c.nodes.back());
+        out.junction_nodes += static_cast<int>(c.id.size());
+      }
+      for (size_t j = 0; j + 1 < path.size(); ++j)
+        if (used[path[j]] >= 0 && used[path[j + 1]] >= 0) ends.push_back({used[path[j]], used[path[j + 1]]});
+    }
+    out.faces_remeshed = static_cast<int>(regions.size());
+    out.faces_kept = static_cast<int>(kept.size());
+    s = std::move(m);
+    u.junction = std::move(ends);
+    measure_junction(s, g, u, 1e4 * tol);  // 1e-9 of the diagonal, as unite_meshes()
+    return out;
+  }
+  return out;
+}
+
+}  // namespace sizemesh

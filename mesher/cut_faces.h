@@ -1,0 +1,38 @@
+// The faces a mesh-level union cut, meshed again by the face mesher: the cut
+// leaves each such face a region bounded by its CAD curves and the junction
+// polylines, whose segments are as short as the crossings of two unrelated
+// meshes made them. Each junction between two corners (nodes where it meets
+// a CAD curve or another junction) is sampled again to the size map (Eq. 1a-1b
+// along the polyline, as for a CAD curve), each new node put on both
+// surfaces; every cut face's region is then meshed from those loops by the
+// same front and optimiser as the rest, so the junction carries the quality
+// and the sizes of a B-rep union.
+//
+// Input:  s        the united mesh; u what unite_meshes() reported (its cut edges)
+//         g, h, o  the geometry, the size map and the mesher's options
+// Output: s with every face the junction touches meshed again; u's junction,
+//         its node count and their distances from the surfaces as they end. A face whose
+//         region cannot be walked in uv (a pole on it) or meshed, or whose
+//         new triangles cross others, keeps its triangles, and so do the
+//         junctions along it; s is left as it was when nothing could be done.
+// Work:   the cut faces' meshing, and one self-intersection check per round
+//         (at most three rounds).
+#pragma once
+
+#include "geometry/geometry.h"
+#include "mesher/mesh_union.h"
+#include "mesher/surface_mesh.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+struct CutFacesResult {
+  int faces_remeshed = 0;  // cut faces meshed again from their new boundary
+  int faces_kept = 0;      // cut faces left with the union's triangles
+  int junction_nodes = 0;  // nodes placed along the junctions
+};
+
+CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFunction& h, const MeshOptions& o,
+                                MeshUnionResult& u);
+
+}  // namespace sizemesh
