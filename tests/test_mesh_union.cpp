@@ -6,6 +6,7 @@
 
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <TopoDS_Compound.hxx>
@@ -162,5 +163,31 @@ TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the 
     const double length = (r->mesh.xyz[a] - r->mesh.xyz[b]).norm();
     CHECK(length > 0.075);
     CHECK(length < 0.125);
+  }
+}
+
+TEST_CASE("a box through a sphere united at mesh level: the sphere, poles and seam, meshed again from the junction") {
+  const test::TempDir dir("mesh_union_sphere");
+  const TopoDS_Shape sphere = BRepPrimAPI_MakeSphere(1.0).Shape();
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(0.5, -0.3, -0.3), 1.5, 0.6, 0.6).Shape();
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({sphere, box}, dir / "ball.brep"), load, 0.1);
+  CHECK(r->model->info().preparation.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  require_closed(r->mesh);
+  CHECK(cgal_pairs(r->mesh) == 0);
+  CHECK(r->report.quality.inverted == 0);
+  CHECK(r->report.quality.avoidable_below_12 == 0);
+  // The sphere's one face (a seam, a pole at each end) and the box's four
+  // sides it cuts: all meshed again, the junction sampled to the size.
+  CHECK(r->report.cut_faces.faces_remeshed == 5);
+  CHECK(r->report.cut_faces.faces_kept == 0);
+  const MeshUnionResult& u = r->report.mesh_union;
+  CHECK(u.junction_nodes_off == 0);
+  for (const auto& [a, b] : u.junction) {
+    const double length = (r->mesh.xyz[a] - r->mesh.xyz[b]).norm();
+    CHECK(length > 0.05);
+    CHECK(length < 0.15);
   }
 }
