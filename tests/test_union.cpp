@@ -28,6 +28,17 @@ std::string line(const std::string& data, char section, int seq) {
   return data + std::string(72 - data.size(), ' ') + tail;
 }
 
+// The report's mesh: one closed, consistently oriented surface with nothing
+// crossing and every face meshed.
+template <class Json>
+void check_one_closed_surface(const Json& m) {
+  CHECK(m["boundary_edges"] == 0);
+  CHECK(m["nonmanifold_edges"] == 0);
+  CHECK(m["orientation_conflicts"] == 0);
+  CHECK(m["self_intersecting_pairs"] == 0);
+  CHECK(m["failed_faces"].empty());
+}
+
 }  // namespace
 
 TEST_CASE("IGES parameter data in column 65 are re-wrapped to 64 columns with pointers and counts updated") {
@@ -110,12 +121,7 @@ TEST_CASE("components the B-rep union cannot take within its budget are united a
   CHECK(prep["united_at_mesh_level"] == mesh_level);
   CHECK(j["mesh_union"]["united"] == mesh_level);
   CHECK(j["mesh_union"]["junction_nodes"] > 500);
-  const auto& m = j["mesh"];
-  CHECK(m["boundary_edges"] == 0);
-  CHECK(m["nonmanifold_edges"] == 0);
-  CHECK(m["orientation_conflicts"] == 0);
-  CHECK(m["self_intersecting_pairs"] == 0);
-  CHECK(m["failed_faces"].empty());
+  check_one_closed_surface(j["mesh"]);
   // Without a budget to run out, the same model unites whole as a B-rep.
   const auto whole = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q", (dir / "w.json"), 0);
   CHECK(whole["preparation"]["not_united"].empty());
@@ -155,12 +161,7 @@ TEST_CASE("a component whose skin folds through itself inside another is united 
   CHECK(j["preparation"]["components"][3]["route"] == "mesh-level union");
   CHECK(j["mesh_union"]["united"] == 1);
   CHECK(j["mesh_union"]["failed"] == 0);
-  const auto& m = j["mesh"];
-  CHECK(m["boundary_edges"] == 0);
-  CHECK(m["nonmanifold_edges"] == 0);
-  CHECK(m["orientation_conflicts"] == 0);
-  CHECK(m["self_intersecting_pairs"] == 0);
-  CHECK(m["failed_faces"].empty());
+  check_one_closed_surface(j["mesh"]);
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
