@@ -11,12 +11,14 @@
 // Input:  s        the united mesh; u what unite_meshes() reported (its cut edges)
 //         g, h, o  the geometry, the size map and the mesher's options
 // Output: s with every face the junction touches meshed again; u's junction,
-//         its node count and their distances from the surfaces as they end. A face whose
-//         region cannot be walked in uv (a pole on it) or meshed, or whose
-//         new triangles cross others, keeps its triangles, and so do the
-//         junctions along it; s is left as it was when nothing could be done.
+//         its node count and their distances from the surfaces as they end.
+//         A face whose region cannot be walked in uv (corners whose uv
+//         disagree, a junction that leaves the parameter domain) or meshed,
+//         or whose new triangles cross others or open an edge, keeps its
+//         triangles, and so do the junctions along it; s is left as it was
+//         when nothing could be done.
 // Work:   the cut faces' meshing, and one self-intersection check per round
-//         (at most three rounds).
+//         (at most four rounds).
 #pragma once
 
 #include "geometry/geometry.h"
