@@ -259,16 +259,11 @@ bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid,
   return 2 * in > static_cast<int>(points.size());
 }
 
-// True when the face lies inside the solid or on its boundary: most of a few
-// points spread over it do. One point alone may sit where another body
-// touches the face (a jury strut's foot on a strut), or be misjudged by the
-// classifier that close to the boundary (a planform plane in a thin wing).
-bool inside_solid(const TopoDS_Face& f, const TopoDS_Shape& solid, double tol) {
-  return mostly_inside(interior_points(f, 5), solid, tol);
-}
-
-// True when the face lies inside one of the solids or on its boundary
-// (inside_solid, its points found once).
+// True when the face lies inside one of the solids or on its boundary: most
+// of a few points spread over it do, for one solid. One point alone may sit
+// where another body touches the face (a jury strut's foot on a strut), or be
+// misjudged by the classifier that close to the boundary (a planform plane
+// in a thin wing).
 bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, double tol) {
   const std::vector<gp_Pnt> points = interior_points(f, 5);
   for (const auto& s : solids)
@@ -276,10 +271,23 @@ bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, d
   return false;
 }
 
-// The solid bounded by the first shell of a sewn shape, or null.
-TopoDS_Solid solid_of(const TopoDS_Shape& sewn) {
-  TopExp_Explorer ex(sewn, TopAbs_SHELL);
-  return ex.More() ? solid_from_shell(TopoDS::Shell(ex.Current())) : TopoDS_Solid();
+// The solids bounded by the shells of a sewn shape (a wing whose halves
+// close each on its own sews into two shells), or none when one of them
+// bounds no solid.
+std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& sewn) {
+  std::vector<TopoDS_Shape> out;
+  for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
+    const TopoDS_Solid solid = solid_from_shell(TopoDS::Shell(ex.Current()));
+    if (solid.IsNull()) return {};
+    out.push_back(solid);
+  }
+  return out;
+}
+
+double volume_of(const std::vector<TopoDS_Shape>& solids) {
+  double v = 0;
+  for (const auto& s : solids) v += volume_of(s);
+  return v;
 }
 
 // The repair of one open component. A null `closed` on return means "keep
@@ -386,8 +394,8 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       // taken out is the plane inside them.
       double volume = -1;
       if (s.free_curves == 0) {
-        const TopoDS_Solid solid = solid_of(s.shape);
-        if (!solid.IsNull()) volume = volume_of(solid);
+        const std::vector<TopoDS_Shape> solids = solids_of(s.shape);
+        if (!solids.empty()) volume = volume_of(solids);
       }
       if (s.free_curves < to_beat || (best >= 0 && s.free_curves == to_beat && volume > best_volume)) {
         best = static_cast<int>(c);
@@ -419,21 +427,21 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   }
   // Open on its half-model plane alone: capped there for a moment, to tell
   // the faces taken out inside it from those outside, and kept open.
-  TopoDS_Solid solid;
+  std::vector<TopoDS_Shape> solids;
   if (now.free_curves != 0) {
     if (r.half_model_axis < 0) return {};
     const Sewn capped = sew(joined(current, planar_caps(now.shape, tol, half, r.half_model_axis).faces), tol);
     if (capped.free_curves != 0) return {};
-    solid = solid_of(capped.shape);
+    solids = solids_of(capped.shape);
     r.half_open = now.shape;
   } else {
-    solid = solid_of(now.shape);
+    solids = solids_of(now.shape);
     r.closed = now.shape;
   }
   // A cap lying on a face (a planform plane and the cap over its rim) bounds no volume.
-  if (solid.IsNull() || volume_of(solid) < 1e-6 * std::pow(component_diagonal, 3)) return {};
+  if (solids.empty() || volume_of(solids) < 1e-6 * std::pow(component_diagonal, 3)) return {};
   for (const auto& f : removed) {
-    if (inside_solid(f, solid, tol)) ++r.internal;
+    if (inside_any(f, solids, tol)) ++r.internal;
     else r.sheets.push_back(f);
   }
   r.sewn = now;
@@ -590,8 +598,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
       continue;
     }
-    const TopoDS_Solid solid = r.closed.IsNull() ? TopoDS_Solid() : solid_of(r.closed);
-    if (solid.IsNull()) {
+    const std::vector<TopoDS_Shape> closed = r.closed.IsNull() ? std::vector<TopoDS_Shape>() : solids_of(r.closed);
+    if (closed.empty()) {
       c.role = "sheet";
       sheets.push_back(s);
       sheet_component.push_back(static_cast<int>(k));
@@ -604,8 +612,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     info.duplicate_faces_removed += r.duplicates;
     info.internal_faces_removed += r.internal;
     if (!c.closed) ++info.components_repaired;
-    solids.push_back(solid);
-    solid_component.push_back(static_cast<int>(k));
+    for (const auto& solid : closed) solids.push_back(solid), solid_component.push_back(static_cast<int>(k));
     for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
   }
   // Faces taken out of one component may lie inside another one (the plane

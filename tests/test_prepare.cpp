@@ -257,6 +257,27 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   for (const Component& c : p.components) CHECK(c.role == "solid");
   // Every face taken out of any component lies inside one of the solids.
   CHECK(p.internal_faces_removed == 11);
+  // The main wing and the horizontal tail each sew into two shells, one per
+  // half, closed on its own: both halves stay. The aircraft is symmetric in
+  // y, so the faces kept on each side have the same area.
+  CHECK(model.num_faces() == 23);
+  // The area on each side, summed over a uv grid (the faces are untrimmed
+  // patches; the fuselage is one face across both sides); the area on the
+  // plane y = 0 (the pod's root caps, back to back) on neither.
+  double left = 0, right = 0, middle = 0;
+  constexpr int n = 64;
+  for (int f = 1; f <= model.num_faces(); ++f) {
+    const UVBox b = model.face_uv_bounds(f);
+    const Vec2 step = (b.hi - b.lo) / n;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const SurfaceD1 d = model.eval_face(f, b.lo + Vec2((i + 0.5) * step.x(), (j + 0.5) * step.y()));
+        const double a = d.du.cross(d.dv).norm() * step.x() * step.y();
+        (std::abs(d.p.y()) < 1e-6 ? middle : d.p.y() < 0 ? left : right) += a;
+      }
+  }
+  CHECK(left == Approx(right).epsilon(0.01));
+  CHECK(left + right + middle == Approx(total_area(model)).epsilon(0.01));
 }
 
 TEST_CASE("a T of two plates is imprinted: the junction curve is shared by three faces, no triangle twice") {
