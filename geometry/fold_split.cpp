@@ -9,8 +9,12 @@
 #include <Precision.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
+#include <BRep_Builder.hxx>
+#include <BRepTools.hxx>
+#include <TopoDS_Compound.hxx>
 #include <ShapeBuild_ReShape.hxx>
 #include <ShapeExtend.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_FaceDivide.hxx>
 #include <ShapeUpgrade_ShapeDivide.hxx>
 #include <ShapeUpgrade_SplitSurface.hxx>
@@ -20,6 +24,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <algorithm>
+#include <map>
 #include <set>
 #include <vector>
 #include <cmath>
@@ -55,10 +60,14 @@ bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
 //    from one side to the other, along most of the line. A front in uv sizes its triangles by the
 //    metric where it stands; across such a line the same uv step is several
 //    times longer in space, and triangles straddling it fold over.
+// With `crease_only`, only a fold along most of the line counts (a cap
+// built into a skin, whose crease runs from end to end), never a jump or a
+// fold at a few points of it (a leading edge sharpening towards a tip).
 double splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo, double hi, double t_lo,
-              double t_hi, double band) {
+                 double t_hi, double band, bool crease_only) {
   std::vector<double> ratios;
   double fold = 0;
+  int folded = 0;
   for (int j = 0; j <= kSamples; ++j) {
     const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
     double side[2], speed[2];
@@ -79,8 +88,9 @@ double splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo
     gp_Dir n0, n1;
     const bool ok = along_u ? normal_at(s, side[0], w, n0) && normal_at(s, side[1], w, n1)
                             : normal_at(s, w, side[0], n0) && normal_at(s, w, side[1], n1);
-    if (ok && n0.Dot(n1) < kFoldCos) fold = std::max(fold, 1 - n0.Dot(n1));
+    if (ok && n0.Dot(n1) < kFoldCos) fold = std::max(fold, 1 - n0.Dot(n1)), ++folded;
   }
+  if (crease_only) return 2 * folded > kSamples + 1 ? 2 + fold : 0;
   if (fold > 0) return 2 + fold;
   // A jump along most of the line (the median: a pole at one end of it has
   // any ratio at all).
@@ -100,6 +110,33 @@ double strip_width(const Geom_BSplineSurface& s, bool along_u, double t_a, doubl
   }
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return d[d.size() / 2];
+}
+
+// True when the strip between the iso-lines t_a and t_b (u = t when
+// along_u), over the other parameter's range [lo, hi], lies on one plane
+// within `band`: a cap built into the skin, such as OpenVSP's root and tip
+// caps folded onto the chord.
+bool flat_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi,
+                double band) {
+  std::vector<gp_Pnt> points;
+  gp_XYZ normal(0, 0, 0);
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= kSamples; ++j) {
+      const double t = t_a + (t_b - t_a) * (i + 0.5) / 5, w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
+      const double u = along_u ? t : w, v = along_u ? w : t;
+      points.push_back(s.Value(u, v));
+      gp_Dir n;
+      if (!normal_at(s, u, v, n)) continue;
+      normal += n.XYZ() * (normal.Dot(n.XYZ()) < 0 ? -1.0 : 1.0);
+    }
+  if (!(normal.Modulus() > 0)) return false;
+  normal.Normalize();
+  gp_XYZ centre(0, 0, 0);
+  for (const auto& p : points) centre += p.XYZ();
+  centre /= static_cast<double>(points.size());
+  for (const auto& p : points)
+    if (std::abs((p.XYZ() - centre).Dot(normal)) > band) return false;
+  return true;
 }
 
 // Knot values that split [t0, t1] (with their strength: 1 a jump, 2 and
@@ -133,13 +170,16 @@ std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std:
 // Which knot lines a division splits at.
 enum class Lines { Both, U, V };
 
+// Lines (along u, at t) of a surface that a division must not split at.
+using Banned = std::map<const Geom_Surface*, std::set<std::pair<bool, double>>>;
+
 // Split values of one face's surface: its C0 knots (multiplicity at least the
 // degree) where the surface folds or its parametric speed jumps.
 class FoldSplitter : public ShapeUpgrade_SplitSurface {
  public:
-  FoldSplitter(double band, Lines lines, const std::set<const Geom_Surface*>& whole,
-               const std::set<const Geom_Surface*>* only)
-      : band_(band), lines_(lines), whole_(whole), only_(only) {}
+  FoldSplitter(double band, Lines lines, const std::set<const Geom_Surface*>& whole, const Banned& banned,
+               const std::set<const Geom_Surface*>* only, bool crease_only)
+      : band_(band), lines_(lines), whole_(whole), banned_(banned), only_(only), crease_only_(crease_only) {}
 
   void Compute(const Standard_Boolean /*segment*/) override {
     if (whole_.count(mySurface.get()) || (only_ && !only_->count(mySurface.get()))) return;
@@ -153,13 +193,21 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
     std::vector<std::pair<double, double>> cand_u, cand_v;
     for (int k = 2; k < b->NbUKnots() && lines_ != Lines::V; ++k) {
       const double t = b->UKnot(k);
-      if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u) continue;
-      if (const double why = splits_at(*b, true, t, v0, v1, u0, u1, band_); why > 0) cand_u.push_back({t, why});
+      if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u || is_banned(true, t, eps_u))
+        continue;
+      if (const double why = splits_at(*b, true, t, v0, v1, u0, u1, band_, crease_only_);
+          why > 0 && (!crease_only_ || flat_strip(*b, true, u0, t, v0, v1, band_) ||
+                      flat_strip(*b, true, t, u1, v0, v1, band_)))
+        cand_u.push_back({t, why});
     }
     for (int k = 2; k < b->NbVKnots() && lines_ != Lines::U; ++k) {
       const double t = b->VKnot(k);
-      if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v) continue;
-      if (const double why = splits_at(*b, false, t, u0, u1, v0, v1, band_); why > 0) cand_v.push_back({t, why});
+      if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v || is_banned(false, t, eps_v))
+        continue;
+      if (const double why = splits_at(*b, false, t, u0, u1, v0, v1, band_, crease_only_);
+          why > 0 && (!crease_only_ || flat_strip(*b, false, v0, t, u0, u1, band_) ||
+                      flat_strip(*b, false, t, v1, u0, u1, band_)))
+        cand_v.push_back({t, why});
     }
     for (double t : kept_splits(*b, true, cand_u, u0, u1, v0, v1, kStripBands * band_)) insert(myUSplitValues, t);
     for (double t : kept_splits(*b, false, cand_v, v0, v1, u0, u1, kStripBands * band_)) insert(myVSplitValues, t);
@@ -168,6 +216,12 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
   }
 
  private:
+  bool is_banned(bool along_u, double t, double eps) const {
+    const auto it = banned_.find(mySurface.get());
+    if (it == banned_.end()) return false;
+    return std::any_of(it->second.begin(), it->second.end(),
+                       [&](const auto& line) { return line.first == along_u && std::abs(line.second - t) <= eps; });
+  }
   static void insert(const Handle(TColStd_HSequenceOfReal)& values, double t) {
     int i = 1;
     while (i <= values->Length() && values->Value(i) < t) ++i;
@@ -176,7 +230,9 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
   double band_;
   Lines lines_;
   const std::set<const Geom_Surface*>& whole_;  // surfaces not to divide
+  const Banned& banned_;                        // lines not to divide at
   const std::set<const Geom_Surface*>* only_;   // when given, the only surfaces to divide
+  bool crease_only_;  // only folds along most of a line (splits_at) that bound a flat cap
 };
 
 // True when a piece of f has no area: its surface collapses there.
@@ -191,20 +247,36 @@ bool empty_piece(const TopoDS_Face& f, const std::vector<TopoDS_Face>& pieces) {
   return false;
 }
 
+// A valid copy of `piece`, healed by ShapeFix_Shape when it is not valid
+// (the division gives new edges a tolerance smaller than their vertices
+// need); null when healing does not make it a valid face.
+TopoDS_Face healed(const TopoDS_Face& piece) {
+  if (BRepCheck_Analyzer(piece).IsValid()) return piece;
+  ShapeFix_Shape fix(piece);
+  fix.Perform();
+  const TopoDS_Shape out = fix.Shape();
+  if (out.IsNull() || out.ShapeType() != TopAbs_FACE || !BRepCheck_Analyzer(out).IsValid()) return {};
+  return TopoDS::Face(out);
+}
+
 // One division of the faces of `shape` (those on `only`'s surfaces, when
 // given) at the knot lines `lines`. `split` is increased by the faces divided;
 // `collapsed` gets the surfaces left whole because a piece had no area,
-// `pieces_made` the surfaces of the pieces.
+// `pieces_made` the surfaces of the pieces. With `loose`, the faces need not
+// stay joined: each piece is healed on its own, and the result is a compound
+// of faces for the caller to sew.
 TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const std::set<const Geom_Surface*>* only,
                     const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
-                    std::set<const Geom_Surface*>& collapsed, std::set<const Geom_Surface*>& pieces_made) {
-  // Faces whose pieces come out invalid keep their surface whole; the rest
-  // are divided again without them (a few rounds at most).
+                    std::set<const Geom_Surface*>& collapsed, std::set<const Geom_Surface*>& pieces_made, bool loose) {
+  // Faces whose pieces come out invalid keep their surface whole (with
+  // `loose`, lose the lines that bound the bad pieces); the rest are divided
+  // again (a few rounds at most).
   std::set<const Geom_Surface*> whole;
+  Banned banned;
   for (int round = 0; round < kRounds; ++round) {
     try {
       Handle(ShapeUpgrade_FaceDivide) faces = new ShapeUpgrade_FaceDivide;
-      faces->SetSplitSurfaceTool(new FoldSplitter(band, lines, whole, only));
+      faces->SetSplitSurfaceTool(new FoldSplitter(band, lines, whole, banned, only, loose));
       ShapeUpgrade_ShapeDivide division(shape);
       division.SetSplitFaceTool(faces);
       division.SetSurfaceSegmentMode(true);
@@ -224,11 +296,32 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
         const TopoDS_Shape now = context->Apply(f);
         if (now.IsSame(f)) continue;
         std::vector<TopoDS_Face> pieces;
-        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next()) pieces.push_back(TopoDS::Face(p.Current()));
-        if (!std::all_of(pieces.begin(), pieces.end(),
-                         [](const TopoDS_Face& piece) { return BRepCheck_Analyzer(piece).IsValid(); })) {
-          whole.insert(BRep_Tool::Surface(f).get());
-          if (empty_piece(f, pieces)) collapsed.insert(BRep_Tool::Surface(f).get());
+        for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
+          pieces.push_back(loose ? healed(TopoDS::Face(p.Current())) : TopoDS::Face(p.Current()));
+        if (!std::all_of(pieces.begin(), pieces.end(), [](const TopoDS_Face& piece) {
+              return !piece.IsNull() && BRepCheck_Analyzer(piece).IsValid();
+            })) {
+          const Geom_Surface* surface = BRep_Tool::Surface(f).get();
+          if (loose) {
+            // The lines that bound a bad piece are not tried again; the
+            // face's other lines are.
+            double u0, u1, v0, v1;
+            BRepTools::UVBounds(f, u0, u1, v0, v1);
+            const double eu = 1e-9 * (u1 - u0), ev = 1e-9 * (v1 - v0);
+            size_t i = 0;
+            for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next(), ++i) {
+              if (!pieces[i].IsNull() && BRepCheck_Analyzer(pieces[i]).IsValid()) continue;
+              double a0, a1, b0, b1;
+              BRepTools::UVBounds(TopoDS::Face(p.Current()), a0, a1, b0, b1);
+              for (double t : {a0, a1})
+                if (t > u0 + eu && t < u1 - eu) banned[surface].insert({true, t});
+              for (double t : {b0, b1})
+                if (t > v0 + ev && t < v1 - ev) banned[surface].insert({false, t});
+            }
+          } else {
+            whole.insert(surface);
+            if (empty_piece(f, pieces)) collapsed.insert(surface);
+          }
           valid = false;
         }
         replaced.push_back({f, std::move(pieces)});
@@ -236,13 +329,22 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       if (!valid) continue;
       // A closed shape stays closed (an open one gains free curves where its
       // free boundary is divided).
-      if ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid())
+      if (!loose &&
+          ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid()))
         return shape;
+      BRep_Builder b;
+      TopoDS_Compound loose_faces;
+      b.MakeCompound(loose_faces);
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); loose && ex.More(); ex.Next())
+        if (context->Apply(ex.Current()).IsSame(ex.Current())) b.Add(loose_faces, ex.Current());
       for (const auto& [f, pieces] : replaced) {
-        for (const TopoDS_Face& piece : pieces) follow(f, piece), pieces_made.insert(BRep_Tool::Surface(piece).get());
+        for (const TopoDS_Face& piece : pieces) {
+          follow(f, piece), pieces_made.insert(BRep_Tool::Surface(piece).get());
+          if (loose) b.Add(loose_faces, piece);
+        }
         split += pieces.size() > 1;
       }
-      return result;
+      return loose ? TopoDS_Shape(loose_faces) : result;
     } catch (const Standard_Failure&) {
       return shape;
     }
@@ -253,20 +355,21 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
 }  // namespace
 
 TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
-                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split) {
+                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
+                         bool loose) {
   split = 0;
   if (shape.IsNull() || !(band > 0)) return shape;
   std::set<const Geom_Surface*> collapsed, unused, u_pieces;
-  TopoDS_Shape result = divide(shape, band, Lines::Both, nullptr, follow, split, collapsed, unused);
+  TopoDS_Shape result = divide(shape, band, Lines::Both, nullptr, follow, split, collapsed, unused, loose);
   if (collapsed.empty()) return result;
   // A face whose division both ways leaves a piece of no area (a wing's
   // skin whose root cap collapses onto its chord, and its blunt trailing
   // edge onto a point there) is divided one way, at its u lines, then each
   // piece at its v lines: the caps come apart from the skin, and the skin
   // from its trailing edge.
-  result = divide(result, band, Lines::U, &collapsed, follow, split, unused, u_pieces);
+  result = divide(result, band, Lines::U, &collapsed, follow, split, unused, u_pieces, loose);
   u_pieces.insert(collapsed.begin(), collapsed.end());
-  return divide(result, band, Lines::V, &u_pieces, follow, split, unused, unused);
+  return divide(result, band, Lines::V, &u_pieces, follow, split, unused, unused, loose);
 }
 
 }  // namespace sizemesh

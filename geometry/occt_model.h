@@ -154,9 +154,12 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
 // (a front in uv folds triangles that straddle such a line).
 // `follow(face, piece)` is called for every face replaced; `split` counts
 // the faces cut. Returns `shape` itself when nothing is split or the result
-// would be invalid, or open where `shape` was closed.
+// would be invalid, or open where `shape` was closed. With `loose`, the
+// faces are divided each on its own, pieces healed where the division left
+// them invalid, and the result is a compound of faces to be sewn again.
 TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
-                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split);
+                         const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
+                         bool loose = false);
 
 // geometry/planar_faces.cpp: faces of `shape` whose surface (a B-spline or
 // other) lies on a plane within `tol` rebuilt on that plane with the same

@@ -582,7 +582,18 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       shell.Closed(true);
       r.closed = shell;
     } else if (s.ShapeType() == TopAbs_SHELL) {
-      r = repair_component(faces_of(s), tol, diagonal_of(c), half, options.domain.symmetry_axis);
+      // Caps built into a skin (OpenVSP's root and tip caps, flat strips
+      // folded onto the chord) split off as faces of their own, when that
+      // finds caps back to back: two halves' root caps, a pod's tip cap and
+      // its strut's root cap. The repair then takes both of each pair out.
+      FaceList faces = faces_of(s);
+      int folds = 0;
+      const TopoDS_Shape split = split_folds(s, kFoldBand * diagonal, follow, folds, true);
+      if (folds > 0 && coincident_pairs(faces_of(split), tol).size() > coincident_pairs(faces, tol).size()) {
+        faces = faces_of(split);
+        info.faces_split_at_folds += folds;
+      }
+      r = repair_component(faces, tol, diagonal_of(c), half, options.domain.symmetry_axis);
       for (const auto& [f, piece] : r.split) follow(f, piece);
       for (const auto& f : r.kept) follow(f, r.sewn.after(f));
     }
@@ -675,7 +686,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   std::sort(info.not_united.begin(), info.not_united.end());
   info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
   // Folds narrower than half the default smallest element become curves.
-  out.shape = split_folds(result, kFoldBand * diagonal, follow, info.faces_split_at_folds);
+  int folds = 0;
+  out.shape = split_folds(result, kFoldBand * diagonal, follow, folds);
+  info.faces_split_at_folds += folds;
   // Flat faces on their plane: no region of zero area in their uv.
   out.shape = planar_faces(out.shape, tol, out.source, follow, info.faces_made_planar);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());

@@ -236,14 +236,18 @@ TEST_CASE("OpenVSP's blunt-trailing-edge wing keeps both skins and loses its pla
   CHECK(z_hi > 0.15);
 }
 
-TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay; their planes go", "[models]") {
-  // Component 1 is a pod (four skins, two planes inside) with a strut sewn
-  // at each side (one skin each, pinched to a line at the tip where the two
-  // sides of its boundary run along the same line with different
-  // parametrisations, and a planform plane). Split at the pinch, a strut's
-  // skin closes over its tip, so the repair takes out the four planes and
-  // nothing else; left whole, only the struts' removal with the planes
-  // closed the pod, and the struts' skins were left as open sheets.
+TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay; planes and caps inside go", "[models]") {
+  // Component 1 is a pod with a strut sewn at each side. Each half of the
+  // pod is one skin whose root and tip caps are built in: flat strips folded
+  // onto the chord, the root caps of the two halves back to back on y = 0,
+  // each tip cap back to back with its strut's root cap. Split off at the
+  // crease, the caps are found as four coincident pairs and all eight go.
+  // Each strut is one skin, pinched to a line at its tip (the two sides of
+  // its boundary run along the same line with different parametrisations),
+  // and a planform plane. Split at the pinch, a strut's skin closes over its
+  // tip, so the repair takes out the four planes and nothing else; left
+  // whole, only the struts' removal with the planes closed the pod, and the
+  // struts' skins were left as open sheets.
   LoadOptions o;
   o.describe_only = true;
   const Model model = load_model(test::model_path("tbw_sugar_openvsp.stp"), o);
@@ -253,17 +257,18 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   CHECK(pod.faces == 8);
   CHECK(pod.bbox_max.y() == Approx(48.915).margin(0.01));
   CHECK(pod.role == "solid");
-  CHECK(pod.faces_removed == 4);
+  CHECK(pod.faces_removed == 12);
+  CHECK(p.duplicate_faces_removed == 8);
   for (const Component& c : p.components) CHECK(c.role == "solid");
   // Every face taken out of any component lies inside one of the solids.
   CHECK(p.internal_faces_removed == 11);
   // The main wing and the horizontal tail each sew into two shells, one per
   // half, closed on its own: both halves stay. The aircraft is symmetric in
   // y, so the faces kept on each side have the same area.
-  CHECK(model.num_faces() == 23);
+  CHECK(model.num_faces() == 26);
   // The area on each side, summed over a uv grid (the faces are untrimmed
-  // patches; the fuselage is one face across both sides); the area on the
-  // plane y = 0 (the pod's root caps, back to back) on neither.
+  // patches; the fuselage is one face across both sides), what lies on
+  // y = 0 on neither side.
   double left = 0, right = 0, middle = 0;
   constexpr int n = 64;
   for (int f = 1; f <= model.num_faces(); ++f) {
