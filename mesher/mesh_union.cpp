@@ -188,6 +188,35 @@ struct NodeUV {
   }
 };
 
+// The source triangle of face f nearest a point, over all of the face's
+// triangles (a tree per face, built when first asked): the start of a
+// projection for a node the cut or the band remesh made far from any source
+// triangle it knows.
+class FaceTriangles {
+ public:
+  explicit FaceTriangles(const SurfaceMesh& s) : s_(s) {
+    for (size_t t = 0; t < s.tris.size(); ++t) of_face_[s.tri_face[t]].push_back(static_cast<int>(t));
+  }
+  // The nearest triangle of f to x (-1 when f has none).
+  int nearest(int f, const Vec3& x) {
+    auto it = tree_.find(f);
+    if (it == tree_.end()) {
+      const auto list = of_face_.find(f);
+      if (list == of_face_.end()) return -1;
+      std::vector<std::array<int, 3>> tris;
+      for (int t : list->second) tris.push_back(s_.tris[t]);
+      it = tree_.emplace(f, std::make_unique<TriangleBVH>(s_.xyz, tris)).first;
+    }
+    const TriangleBVH::Closest c = it->second->closest(x);
+    return c.tri < 0 ? -1 : of_face_[f][c.tri];
+  }
+
+ private:
+  const SurfaceMesh& s_;
+  std::unordered_map<int, std::vector<int>> of_face_;
+  std::unordered_map<int, std::unique_ptr<TriangleBVH>> tree_;
+};
+
 // Pairs of triangles of m that intersect.
 size_t crossing_pairs(const Mesh& m) {
   size_t n = 0;
@@ -425,6 +454,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     return box.isEmpty() ? 1.0 : box.diagonal().norm();
   }();
   const NodeUV node_uv(s);
+  FaceTriangles face_tris(s);
   std::map<std::pair<uint32_t, int>, Vec2> vertex_uv;  // (vertex, face) -> uv
   std::vector<Vec3> xyz(m.number_of_vertices());
   std::map<VI, std::vector<std::pair<int, Vec2>>> junction_faces;  // cut node -> (face, uv) on each of its surfaces
@@ -468,7 +498,9 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
         }
       if (best == HUGE_VAL) {
         const Vec2* known = n >= 0 ? node_uv.find(n, faces[i]) : nullptr;
+        const int t = known ? -1 : face_tris.nearest(faces[i], xyz[v]);
         if (known) uv[i] = *known;
+        else if (t >= 0) uv[i] = uv_on(t, xyz[v], d);
         else started = false;
       }
     }
@@ -548,7 +580,10 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       } else if (const Vec2* at = n >= 0 ? node_uv.find(n, face) : nullptr) {
         uv[k] = *at;
       } else {
-        uv[k] = Vec2(0, 0);
+        // A start on the face's nearest source triangle, then the surface.
+        double d;
+        const int t = face_tris.nearest(face, node_xyz[tr[k]]);
+        uv[k] = t >= 0 ? uv_on(t, node_xyz[tr[k]], d) : Vec2(0, 0);
         g.project_to_face(face, node_xyz[tr[k]], uv[k]);
       }
       ++k;

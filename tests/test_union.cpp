@@ -148,6 +148,25 @@ TEST_CASE("a component the mesh-union option names is united at mesh level while
   CHECK(beyond.err == "sizemesh: error: --mesh-union 8: the model has 7 components (sizemesh --info lists them)\n");
 }
 
+TEST_CASE("a transport's twelve components united at mesh level: every node's uv is its place on its face", "[models]") {
+  // Nodes the band remesh makes away from every source triangle they know
+  // (the wing's upper junction on the fuselage side) take their uv from the
+  // face's nearest source triangle, then the surface: no uv at a corner of
+  // the parameter domain, metres from the node, which the report would count
+  // as inverted triangles.
+  const test::TempDir dir("union_transport_mesh");
+  const auto j = test::run_with_report(test::model_path("transport_wbnp_openvsp.stp") + " -q --mesh-union all -o " +
+                                           (dir / "t.vtu"),
+                                       (dir / "r.json"), 0);
+  CHECK(j["preparation"]["not_united"].empty());
+  CHECK(j["mesh_union"]["united"] == 12);
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh"]["inverted_triangles"] == 0);
+  // Inner nodes on their surface within 0.5% of the diagonal (26.99 ft):
+  // the largest gap is a junction node left on the meshes where surfaces graze.
+  CHECK(j["mesh"]["max_inner_node_distance"].get<double>() < 0.135);
+}
+
 TEST_CASE("a component whose skin folds through itself inside another is united at mesh level", "[models]") {
   // The manta's component 4 meshes with crossing triangles (faces 65 to 68:
   // its skin folds through itself), all inside component 6. The union drops
