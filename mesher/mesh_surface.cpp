@@ -1,7 +1,9 @@
 #include "mesher/mesh_surface.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <new>
 
@@ -188,10 +190,44 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeFunction& h, const MeshOp
       out.tri_uv.push_back(uv);
     }
   }
+  drop_back_to_back(out);
   return out;
 }
 
 }  // namespace
+
+void drop_back_to_back(SurfaceMesh& m) {
+  std::map<std::array<int, 3>, std::vector<int>> by_nodes;
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    std::array<int, 3> key = m.tris[t];
+    std::sort(key.begin(), key.end());
+    by_nodes[key].push_back(static_cast<int>(t));
+  }
+  // Opposite orientation: b's cyclic order is a's reversed.
+  auto opposite = [&](int a, int b) {
+    const auto &x = m.tris[a], &y = m.tris[b];
+    for (int k = 0; k < 3; ++k)
+      if (y[k] == x[0]) return y[(k + 1) % 3] == x[2];
+    return false;
+  };
+  std::vector<char> drop(m.tris.size(), 0);
+  for (const auto& [key, list] : by_nodes)
+    for (size_t i = 0; i < list.size(); ++i)
+      for (size_t j = i + 1; j < list.size() && !drop[list[i]]; ++j)
+        if (!drop[list[j]] && opposite(list[i], list[j])) drop[list[i]] = drop[list[j]] = 1;
+  size_t kept = 0;
+  for (size_t t = 0; t < m.tris.size(); ++t) {
+    if (drop[t]) continue;
+    m.tris[kept] = m.tris[t];
+    m.tri_face[kept] = m.tri_face[t];
+    m.tri_uv[kept] = m.tri_uv[t];
+    ++kept;
+  }
+  m.stats.back_to_back_dropped = static_cast<int>(m.tris.size() - kept);
+  m.tris.resize(kept);
+  m.tri_face.resize(kept);
+  m.tri_uv.resize(kept);
+}
 
 SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o) {
   // A local arena: the thread count applies to this call only.

@@ -8,7 +8,9 @@
 //         strategy                                    (advancing_front.h)
 //      c. swaps and smoothing                         (optimise.h)
 //   3. assemble in face order: nodes on B-rep points and curves shared by index,
-//      triangles flipped where the face is reversed in its shell.
+//      triangles flipped where the face is reversed in its shell; a pair of
+//      triangles on the same nodes facing apart (two faces back to back, no
+//      thickness between them) dropped.
 //
 // Inputs:
 //   g   the B-rep (thread-safe)
@@ -37,6 +39,14 @@ SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOpt
 // of mesh_surface(). On success fm holds the mesh (uv the surface's, new
 // inner nodes with global id -1); else false and `reason`.
 bool mesh_within(const Geometry& g, const SizeFunction& h, FaceMesh& fm, const MeshOptions& o, std::string& reason);
+
+// Two faces that lie back to back over a strip (a fin or a tip whose two
+// sides meet with no thickness between them) mesh that strip twice: a pair
+// of triangles on the same three nodes, facing away from each other. The
+// pair bounds no volume and its edges are used four times, so no solid's
+// surface can hold it: both go (counted in m.stats.back_to_back_dropped).
+// Triangles that do not pair stay; node ids do not change.
+void drop_back_to_back(SurfaceMesh& m);
 
 // Hands the mesher the accuracy the size map was built for: p's deviation
 // bound, phi_c per face (the turn an inner edge may make) and the map's h_min.

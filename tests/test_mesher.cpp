@@ -805,3 +805,28 @@ TEST_CASE("with a deviation bound the mesh stays that close to doubly curved, sa
     CHECK(worst >= 0.5 * d);  // and not far finer than asked
   }
 }
+
+TEST_CASE("a pair of triangles on the same nodes facing apart is dropped; every other triangle stays") {
+  // A closed tetrahedron with a fin on its edge 0-1: the fin's two sides are
+  // one triangle each on nodes 0, 1, 4, facing apart (two faces back to back,
+  // no thickness). Edge 0-1 is used four times until the pair goes.
+  SurfaceMesh m;
+  m.xyz = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(0.5, -1, 0)};
+  m.tris = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 1, 4}, {1, 0, 4}};
+  m.tri_face = {1, 1, 1, 1, 2, 3};
+  m.tri_uv.assign(m.tris.size(), {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)});
+  drop_back_to_back(m);
+  CHECK(m.stats.back_to_back_dropped == 2);
+  REQUIRE(m.tris.size() == 4);
+  REQUIRE(m.tri_face.size() == 4);
+  REQUIRE(m.tri_uv.size() == 4);
+  for (int f : m.tri_face) CHECK(f == 1);
+  CHECK(m.xyz.size() == 5);  // node ids unchanged
+  // The same triangle twice in one orientation is no fin: both stay.
+  m.tris.push_back(m.tris[0]);
+  m.tri_face.push_back(1);
+  m.tri_uv.push_back(m.tri_uv[0]);
+  drop_back_to_back(m);
+  CHECK(m.stats.back_to_back_dropped == 0);
+  CHECK(m.tris.size() == 5);
+}

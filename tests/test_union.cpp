@@ -208,3 +208,18 @@ TEST_CASE("a general fuse that does not stop is ended at the union's budget and 
   CHECK(info.out.find("components:  21 after sewing") != std::string::npos);
   CHECK(info.out.find("union:       not run: --info describes the file") != std::string::npos);
 }
+
+TEST_CASE("tails and struts whose two sides meet back to back near a tip leave no non-manifold edge", "[models]") {
+  // OpenVSP's truss-braced wing: the vertical tail's two faces (one per side
+  // of y = 0) both reach over a flat strip at the tip's trailing edge and
+  // mesh it with the same triangle, facing apart; so do the horizontal
+  // tail's tips (2) and each strut's top (3 each). Those 9 pairs go; no edge
+  // is used four times. The union's budget is cut to a second: the strips
+  // lie in the components as repaired, whichever route they take.
+  const test::TempDir dir("union_back_to_back");
+  const auto j = test::run_with_report(test::model_path("tbw_sugar_openvsp.stp") + " -q --union-seconds 1 -o " +
+                                           (dir / "t.vtu"),
+                                       (dir / "r.json"), 3);
+  CHECK(j["mesher"]["back_to_back_dropped"] == 18);
+  CHECK(j["mesh"]["nonmanifold_edges"] == 0);
+}
