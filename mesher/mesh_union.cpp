@@ -370,13 +370,23 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     const auto it = part_of_face.find(s.tri_face[t]);
     (it == part_of_face.end() ? rest : part_tris[it->second]).push_back(static_cast<int>(t));
   }
-  // The pieces to unite: the rest's closed pieces (largest first), then the
-  // parts. The rest's open pieces (sheets) and its pieces that cannot take
-  // part (a mesh that intersects itself) are kept as they are.
+  // The pieces to unite: the rest's closed pieces (largest first), then each
+  // part's: a part whose mesh is closed joins as its closed pieces, one at a
+  // time (a component whose halves are closed shells that cross each other,
+  // such as a T-tail's two halves through the fin, is united with itself
+  // too); one whose mesh is open joins whole and fails, named. The rest's
+  // open pieces (sheets) and the pieces that cannot take part (a mesh that
+  // intersects itself) are kept as they are.
   std::vector<int> aside;
   std::vector<std::vector<int>> pieces = closed_pieces(s, rest, aside);
   const size_t rest_pieces = pieces.size();
-  for (auto& tris : part_tris) pieces.push_back(tris);
+  std::vector<int> part_of_piece(rest_pieces, -1);
+  for (size_t p = 0; p < parts.size(); ++p) {
+    std::vector<int> open;
+    std::vector<std::vector<int>> closed = closed_pieces(s, part_tris[p], open);
+    if (!open.empty() || closed.empty()) closed = {part_tris[p]};
+    for (auto& tris : closed) pieces.push_back(std::move(tris)), part_of_piece.push_back(static_cast<int>(p));
+  }
 
   // Target sizes at the nodes, for the band's edge length.
   const std::vector<double> node_h = target_sizes(s, h);
@@ -392,8 +402,9 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   auto take = [&](size_t i, bool last_pass) {
     const bool is_part = i >= rest_pieces;
     auto fail = [&](const std::string& why) {
-      if (is_part) out.failures[i - rest_pieces] = why;
-      else aside.insert(aside.end(), pieces[i].begin(), pieces[i].end()), ++out.rest_pieces_apart;
+      if (is_part && out.failures[part_of_piece[i]].empty()) out.failures[part_of_piece[i]] = why;
+      if (!is_part) ++out.rest_pieces_apart;
+      aside.insert(aside.end(), pieces[i].begin(), pieces[i].end());
     };
     auto part = std::make_unique<Tracked>();
     std::string why;
@@ -411,7 +422,6 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     for (VI v : part->m.vertices()) base_nodes.insert(part->node[v]);
     if (!base) {  // the start
       base = std::move(part);
-      out.united += is_part;
       return;
     }
     auto before = std::make_unique<Tracked>(*base);
@@ -435,13 +445,13 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       return fail(folded ? "its mesh intersects itself, and its union with the rest does too"
                          : "the corefinement of its mesh with the rest failed");
     }
-    out.united += is_part;
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
     base->m.remove_property_map(cut_now);
   };
   for (size_t i = 0; i < pieces.size(); ++i) take(i, false);
   for (size_t i : waiting) take(i, true);
+  for (size_t p = 0; p < parts.size(); ++p) out.united += out.failures[p].empty();
   if (!base) base = std::make_unique<Tracked>();
   remesh_bands(*base, s, g, node_h, near_cut, out);
   base->m.collect_garbage();
@@ -599,10 +609,6 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     tri_uv.push_back(uv);
   }
   for (int t : aside) tris.push_back(s.tris[t]), tri_face.push_back(s.tri_face[t]), tri_uv.push_back(s.tri_uv[t]);
-  for (size_t p = 0; p < parts.size(); ++p)
-    if (!out.failures[p].empty())
-      for (int t : part_tris[p])
-        tris.push_back(s.tris[t]), tri_face.push_back(s.tri_face[t]), tri_uv.push_back(s.tri_uv[t]);
 
   // Triangles by face, in their order; nodes renumbered in theirs.
   std::vector<int> order(tris.size());

@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "src/pipeline.h"
 #include "tests/temp_dir.h"
@@ -190,4 +191,32 @@ TEST_CASE("a box through a sphere united at mesh level: the sphere, poles and se
     CHECK(length > 0.05);
     CHECK(length < 0.15);
   }
+}
+
+TEST_CASE("a component of two closed shells that cross each other is united piece by piece") {
+  // B = [0,1]x[0,3]x[1,2] and C = [0.25,0.75]x[1,2]x[0,3] cross; taken as one
+  // part (as a repaired component whose halves close on their own, such as
+  // a T-tail's through its fin), its mesh crosses itself. Each closed piece
+  // joins on its own, so the part unites; A = [5,6]x[0,1]x[0,1] is the rest.
+  const test::TempDir dir("mesh_union_pieces");
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(gp_Pnt(5, 0, 0), 1.0, 1.0, 1.0).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 1), 1.0, 3.0, 1.0).Shape();
+  const TopoDS_Shape c = BRepPrimAPI_MakeBox(gp_Pnt(0.25, 1, 0), 0.5, 1.0, 3.0).Shape();
+  LoadOptions load;
+  load.unite = false;
+  auto r = mesh_file(write_compound({a, b, c}, dir / "pieces.brep"), load, 0.1);
+  // The faces of B and C, by where their triangles lie.
+  std::set<int> faces_bc;
+  for (size_t t = 0; t < r->mesh.tris.size(); ++t)
+    if (r->mesh.xyz[r->mesh.tris[t][0]].x() < 4) faces_bc.insert(r->mesh.tri_face[t]);
+  REQUIRE(faces_bc.size() == 12);
+  const MeshUnionResult u =
+      unite_meshes(r->mesh, *r->model, *r->query, {std::vector<int>(faces_bc.begin(), faces_bc.end())});
+  REQUIRE(u.failures.size() == 1);
+  CHECK(u.failures[0].empty());
+  CHECK(u.united == 1);
+  require_closed(r->mesh);
+  CHECK(cgal_pairs(r->mesh) == 0);
+  // A's 6, B's 14 and C's 10, less B's 1 inside C and C's 3 inside B.
+  CHECK(area(r->mesh) == Approx(26.0).epsilon(0.005));
 }
