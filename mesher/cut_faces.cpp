@@ -466,12 +466,16 @@ void measure_junction(const SurfaceMesh& s, const Geometry& g, MeshUnionResult& 
   u.junction_nodes = static_cast<int>(nodes.size());
   u.max_junction_gap = 0;
   u.junction_nodes_off = 0;
+  u.junction_nodes_unprojected = 0;
   for (const auto& [n, faces] : faces_of) {
     double gap = 0;
+    bool projected = true;
     for (auto [f, uv] : faces)
-      gap = g.project_to_face(f, s.xyz[n], uv) ? std::max(gap, (g.eval_face(f, uv).p - s.xyz[n]).norm()) : HUGE_VAL;
-    u.max_junction_gap = std::max(u.max_junction_gap, gap);
-    u.junction_nodes_off += gap > off;
+      if (g.project_to_face(f, s.xyz[n], uv)) gap = std::max(gap, (g.eval_face(f, uv).p - s.xyz[n]).norm());
+      else projected = false;
+    if (projected) u.max_junction_gap = std::max(u.max_junction_gap, gap);
+    u.junction_nodes_unprojected += !projected;
+    u.junction_nodes_off += !projected || gap > off;
   }
 }
 

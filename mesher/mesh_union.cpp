@@ -638,10 +638,13 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (auto& [v, on] : junction_faces) {
     const int n = used[id[v]];
     double gap = 0;
+    bool projected = true;
     for (auto& [face, uv] : on)
-      gap = g.project_to_face(face, r.xyz[n], uv) ? std::max(gap, (g.eval_face(face, uv).p - r.xyz[n]).norm()) : HUGE_VAL;
-    out.max_junction_gap = std::max(out.max_junction_gap, gap);
-    out.junction_nodes_off += gap > 1e-9 * diag;
+      if (g.project_to_face(face, r.xyz[n], uv)) gap = std::max(gap, (g.eval_face(face, uv).p - r.xyz[n]).norm());
+      else projected = false;
+    if (projected) out.max_junction_gap = std::max(out.max_junction_gap, gap);
+    out.junction_nodes_unprojected += !projected;
+    out.junction_nodes_off += !projected || gap > 1e-9 * diag;
   }
   s = std::move(r);
   return out;

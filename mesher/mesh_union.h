@@ -35,7 +35,8 @@ struct MeshUnionResult {
   int band_triangles = 0;             // triangles of the remeshed bands
   int band_classes_undone = 0;        // size classes whose band remesh was undone (it made the surface cross itself)
   int junction_nodes_off = 0;         // of those, nodes left on the meshes (surfaces meeting at a grazing angle)
-  double max_junction_gap = 0;        // largest distance of a junction node from either surface
+  int junction_nodes_unprojected = 0; // of those, nodes a surface's projection did not reach (left out of the gap)
+  double max_junction_gap = 0;        // largest distance of a projected junction node from either surface
   std::vector<std::array<int, 2>> junction;  // the cut edges (node pairs) in the united mesh
 };
 

@@ -130,6 +130,7 @@ nlohmann::json report_json(const RunReport& r) {
                        {"band_triangles", r.mesh_union.band_triangles},
                        {"band_classes_undone", r.mesh_union.band_classes_undone},
                        {"max_junction_gap", r.mesh_union.max_junction_gap},
+                       {"junction_nodes_unprojected", r.mesh_union.junction_nodes_unprojected},
                        {"faces_remeshed", r.cut_faces.faces_remeshed},
                        {"faces_kept", r.cut_faces.faces_kept},
                        {"junction_nodes_placed", r.cut_faces.junction_nodes}};
@@ -166,7 +167,11 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
       << " background triangles visited on average, " << r.queries.fallbacks << " fallbacks\n";
   if (r.mesh_union.united > 0)
     out << "mesh-level union: " << r.mesh_union.united << " components, " << r.mesh_union.junction_nodes
-        << " junction nodes (" << r.mesh_union.junction_nodes_off << " left on the meshes; at most "
+        << " junction nodes (" << r.mesh_union.junction_nodes_off << " left on the meshes"
+        << (r.mesh_union.junction_nodes_unprojected > 0
+                ? ", " + std::to_string(r.mesh_union.junction_nodes_unprojected) + " of them off every projection"
+                : std::string())
+        << "; at most "
         << r.mesh_union.max_junction_gap << " from their CAD surfaces), "
         << r.mesh_union.band_triangles << " triangles remeshed along the cuts\n";
   out << "time:";

@@ -222,4 +222,9 @@ TEST_CASE("tails and struts whose two sides meet back to back near a tip leave n
                                        (dir / "r.json"), 3);
   CHECK(j["mesher"]["back_to_back_dropped"] == 18);
   CHECK(j["mesh"]["nonmanifold_edges"] == 0);
+  // Junction nodes no projection reaches are counted apart: the largest gap
+  // is that of the nodes on their surfaces, a number.
+  const auto& u = j["mesh_union"];
+  CHECK(u["max_junction_gap"].is_number());
+  CHECK(u["junction_nodes_unprojected"].get<int>() <= u["junction_nodes_off_surface"].get<int>());
 }
