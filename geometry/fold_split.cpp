@@ -190,25 +190,25 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
     const double u0 = myUSplitValues->Value(1), u1 = myUSplitValues->Value(myUSplitValues->Length());
     const double v0 = myVSplitValues->Value(1), v1 = myVSplitValues->Value(myVSplitValues->Length());
     const double eps_u = 1e-9 * std::max(u1 - u0, 1e-300), eps_v = 1e-9 * std::max(v1 - v0, 1e-300);
-    std::vector<std::pair<double, double>> cand_u, cand_v;
-    for (int k = 2; k < b->NbUKnots() && lines_ != Lines::V; ++k) {
-      const double t = b->UKnot(k);
-      if (b->UMultiplicity(k) < b->UDegree() || t <= u0 + eps_u || t >= u1 - eps_u || is_banned(true, t, eps_u))
-        continue;
-      if (const double why = splits_at(*b, true, t, v0, v1, u0, u1, band_, crease_only_);
-          why > 0 && (!crease_only_ || flat_strip(*b, true, u0, t, v0, v1, band_) ||
-                      flat_strip(*b, true, t, u1, v0, v1, band_)))
-        cand_u.push_back({t, why});
-    }
-    for (int k = 2; k < b->NbVKnots() && lines_ != Lines::U; ++k) {
-      const double t = b->VKnot(k);
-      if (b->VMultiplicity(k) < b->VDegree() || t <= v0 + eps_v || t >= v1 - eps_v || is_banned(false, t, eps_v))
-        continue;
-      if (const double why = splits_at(*b, false, t, u0, u1, v0, v1, band_, crease_only_);
-          why > 0 && (!crease_only_ || flat_strip(*b, false, v0, t, u0, u1, band_) ||
-                      flat_strip(*b, false, t, v1, u0, u1, band_)))
-        cand_v.push_back({t, why});
-    }
+    // Knot lines of full multiplicity inside the face that qualify: a fold
+    // or jump (splits_at), and with crease_only one that bounds a flat cap.
+    auto candidates = [&](bool along_u) {
+      std::vector<std::pair<double, double>> cand;
+      const double t0 = along_u ? u0 : v0, t1 = along_u ? u1 : v1, lo = along_u ? v0 : u0, hi = along_u ? v1 : u1;
+      const double eps = along_u ? eps_u : eps_v;
+      const int knots = along_u ? b->NbUKnots() : b->NbVKnots(), degree = along_u ? b->UDegree() : b->VDegree();
+      for (int k = 2; k < knots && lines_ != (along_u ? Lines::V : Lines::U); ++k) {
+        const double t = along_u ? b->UKnot(k) : b->VKnot(k);
+        const int multiplicity = along_u ? b->UMultiplicity(k) : b->VMultiplicity(k);
+        if (multiplicity < degree || t <= t0 + eps || t >= t1 - eps || is_banned(along_u, t, eps)) continue;
+        if (const double why = splits_at(*b, along_u, t, lo, hi, t0, t1, band_, crease_only_);
+            why > 0 && (!crease_only_ || flat_strip(*b, along_u, t0, t, lo, hi, band_) ||
+                        flat_strip(*b, along_u, t, t1, lo, hi, band_)))
+          cand.push_back({t, why});
+      }
+      return cand;
+    };
+    const std::vector<std::pair<double, double>> cand_u = candidates(true), cand_v = candidates(false);
     for (double t : kept_splits(*b, true, cand_u, u0, u1, v0, v1, kStripBands * band_)) insert(myUSplitValues, t);
     for (double t : kept_splits(*b, false, cand_v, v0, v1, u0, u1, kStripBands * band_)) insert(myVSplitValues, t);
     if (myUSplitValues->Length() > 2 || myVSplitValues->Length() > 2)
