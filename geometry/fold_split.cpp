@@ -1,12 +1,14 @@
 // Faces split along knot lines where their surface folds over within the
 // smallest element size or its parametrisation jumps (split_folds,
 // geometry/occt_model.h).
+#include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <GProp_GProps.hxx>
 #include <BRep_Tool.hxx>
 #include <Precision.hxx>
+#include <Geom2d_Curve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <BRep_Builder.hxx>
@@ -28,6 +30,7 @@
 #include <set>
 #include <vector>
 #include <cmath>
+#include <limits>
 
 #include "geometry/occt_model.h"
 
@@ -67,7 +70,7 @@ double splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo
                  double t_hi, double band, bool crease_only) {
   std::vector<double> ratios;
   double fold = 0;
-  int folded = 0;
+  int folded = 0, defined = 0;
   for (int j = 0; j <= kSamples; ++j) {
     const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
     double side[2], speed[2];
@@ -88,9 +91,13 @@ double splits_at(const Geom_BSplineSurface& s, bool along_u, double t, double lo
     gp_Dir n0, n1;
     const bool ok = along_u ? normal_at(s, side[0], w, n0) && normal_at(s, side[1], w, n1)
                             : normal_at(s, w, side[0], n0) && normal_at(s, w, side[1], n1);
+    defined += ok;
     if (ok && n0.Dot(n1) < kFoldCos) fold = std::max(fold, 1 - n0.Dot(n1)), ++folded;
   }
-  if (crease_only) return 2 * folded > kSamples + 1 ? 2 + fold : 0;
+  // Most of the line, counted where the surface has a normal on both sides
+  // (a section whose trailing-edge spans collapse to a point has none there),
+  // and that over a third of the line at least.
+  if (crease_only) return 3 * defined > kSamples + 1 && 2 * folded > defined ? 2 + fold : 0;
   if (fold > 0) return 2 + fold;
   // A jump along most of the line (the median: a pole at one end of it has
   // any ratio at all).
@@ -114,10 +121,20 @@ double strip_width(const Geom_BSplineSurface& s, bool along_u, double t_a, doubl
 
 // True when the strip between the iso-lines t_a and t_b (u = t when
 // along_u), over the other parameter's range [lo, hi], lies on one plane
-// within `band`: a cap built into the skin, such as OpenVSP's root and tip
-// caps folded onto the chord.
+// within `band` and is wider than `band` somewhere: a cap built into the
+// skin, such as OpenVSP's root and tip caps folded onto the chord. A strip
+// of no width (a section of zero thickness folded onto its chord, as a wing
+// root lying on a fuselage's crest) is no cap: splitting it off would leave
+// the skin's edge a line run twice.
 bool flat_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi,
                 double band) {
+  double widest = 0;
+  for (int j = 0; j <= kSamples; ++j) {
+    const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
+    widest = std::max(widest, (along_u ? s.Value(t_a, w) : s.Value(w, t_a))
+                                  .Distance(along_u ? s.Value(t_b, w) : s.Value(w, t_b)));
+  }
+  if (!(widest > band)) return false;
   std::vector<gp_Pnt> points;
   gp_XYZ normal(0, 0, 0);
   for (int i = 0; i <= 4; ++i)
@@ -137,6 +154,149 @@ bool flat_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, double t
   for (const auto& p : points)
     if (std::abs((p.XYZ() - centre).Dot(normal)) > band) return false;
   return true;
+}
+
+// True when the strip between the iso-lines t_a and t_b (u = t when
+// along_u) collapses onto a curve: across it the surface does not move by
+// more than `tol` anywhere over [lo, hi]. OpenVSP writes a sharp trailing
+// edge as such spans; a face's piece there has no area and no normal.
+bool collapsed_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi,
+                     double tol) {
+  for (int j = 0; j <= kSamples; ++j) {
+    const double w = lo + (hi - lo) * j / kSamples;
+    const gp_Pnt a = along_u ? s.Value(t_a, w) : s.Value(w, t_a);
+    for (int i = 1; i <= 4; ++i) {
+      const double t = t_a + (t_b - t_a) * i / 4;
+      if ((along_u ? s.Value(t, w) : s.Value(w, t)).Distance(a) > tol) return false;
+    }
+  }
+  return true;
+}
+
+// Largest distance of a sample of `a` from the polyline `b`.
+double distance_to(const std::vector<gp_Pnt>& a, const std::vector<gp_Pnt>& b) {
+  double farthest = 0;
+  for (const gp_Pnt& p : a) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i + 1 < b.size(); ++i) {
+      const gp_Vec e(b[i], b[i + 1]), w(b[i], p);
+      const double ee = e.SquareMagnitude(), t = ee > 0 ? std::clamp(w.Dot(e) / ee, 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, w.Subtracted(e.Multiplied(t)).Magnitude());
+    }
+    farthest = std::max(farthest, nearest);
+  }
+  return farthest;
+}
+
+// How far the iso-line `along_u ? u = c : v = c` is from running back on
+// itself at the knot t of the other parameter: the distance between its
+// parts over [t0, t] and [t, t1] (both ways), which start and end at one
+// point. A section collapsed onto its chord, as at the end of OpenVSP's tip
+// cap, goes from the trailing edge to the leading edge and back: 0 at the
+// leading edge's knot. Infinite when a part is shorter than 10 `tol`.
+double fold_back_gap(const Geom_BSplineSurface& s, bool along_u, double c, double t0, double t, double t1,
+                     double tol) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  auto at = [&](double w) { return along_u ? s.Value(c, w) : s.Value(w, c); };
+  if (at(t0).Distance(at(t1)) > tol) return kInf;
+  // The line turns back at t: its steps just before and just after point
+  // opposite ways (the samples below are only taken where it does).
+  const double e = 1e-3 * std::min(t - t0, t1 - t);
+  const gp_Vec before(at(t - e), at(t)), after(at(t), at(t + e));
+  if (!(before.Magnitude() > 0 && after.Magnitude() > 0) || before.Dot(after) > -0.9 * before.Magnitude() * after.Magnitude())
+    return kInf;
+  constexpr int n = 8 * kSamples;
+  std::vector<gp_Pnt> part[2];
+  double length[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const double a = k == 0 ? t0 : t, b = k == 0 ? t : t1;
+    for (int i = 0; i <= n; ++i) {
+      const double w = a + (b - a) * i / n;
+      part[k].push_back(at(w));
+      if (i > 0) length[k] += part[k][i].Distance(part[k][i - 1]);
+    }
+  }
+  if (!(std::min(length[0], length[1]) > 10 * tol)) return kInf;
+  return std::max({part[0].front().Distance(part[1].back()), distance_to(part[0], part[1]),
+                   distance_to(part[1], part[0])});
+}
+
+// `piece` rebuilt for the sewing of loose pieces: without the strips along
+// its border that collapse onto a curve (OpenVSP's sharp trailing edges;
+// the borders either side of such strips then run on one curve, for the
+// sewing to join), and divided at the knots where a border runs back on
+// itself (so each half of that border can sew to the other). `piece` alone
+// when neither applies or it is not a B-spline face over a whole domain.
+std::vector<TopoDS_Face> rebuild_piece(const TopoDS_Face& piece, double tol) {
+  Handle(Geom_Surface) surface = BRep_Tool::Surface(piece);
+  if (auto trimmed = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) surface = trimmed->BasisSurface();
+  const Handle(Geom_BSplineSurface) b = Handle(Geom_BSplineSurface)::DownCast(surface);
+  if (b.IsNull()) return {piece};
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(piece, u0, u1, v0, v1);
+  // Bounded by its domain's borders alone: every edge runs along one.
+  const double eu = 1e-7 * (u1 - u0), ev = 1e-7 * (v1 - v0);
+  for (TopExp_Explorer ex(piece, TopAbs_EDGE); ex.More(); ex.Next()) {
+    double f, l;
+    const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), piece, f, l);
+    if (c.IsNull()) return {piece};
+    bool on[4] = {true, true, true, true};
+    for (double t : {f, 0.5 * (f + l), l}) {
+      const gp_Pnt2d p = c->Value(t);
+      on[0] = on[0] && std::abs(p.X() - u0) <= eu, on[1] = on[1] && std::abs(p.X() - u1) <= eu;
+      on[2] = on[2] && std::abs(p.Y() - v0) <= ev, on[3] = on[3] && std::abs(p.Y() - v1) <= ev;
+    }
+    if (!(on[0] || on[1] || on[2] || on[3])) return {piece};
+  }
+  double range[2][2] = {{u0, u1}, {v0, v1}};
+  bool changed = false;
+  for (int d = 0; d < 2; ++d) {
+    const bool along_u = d == 0;
+    const double t0 = range[d][0], t1 = range[d][1], lo = along_u ? v0 : u0, hi = along_u ? v1 : u1;
+    const double eps = 1e-9 * (t1 - t0);
+    const int knots = along_u ? b->NbUKnots() : b->NbVKnots();
+    for (int k = 1; k <= knots; ++k) {
+      const double t = along_u ? b->UKnot(k) : b->VKnot(k);
+      if (t <= t0 + eps || t >= t1 - eps) continue;
+      if (t > range[d][0] && collapsed_strip(*b, along_u, t0, t, lo, hi, tol)) range[d][0] = t, changed = true;
+      if (t < range[d][1] && collapsed_strip(*b, along_u, t, t1, lo, hi, tol))
+        range[d][1] = std::min(range[d][1], t), changed = true;
+    }
+  }
+  if (!(range[0][0] < range[0][1]) || !(range[1][0] < range[1][1])) return {piece};
+  // A cut in u where a border v = const folds back, and in v where a border u = const does.
+  std::vector<double> cuts[2] = {{range[0][0]}, {range[1][0]}};
+  for (int d = 0; d < 2; ++d) {
+    const bool along_u = d == 0;  // the cut's parameter is u; the borders are v = const
+    const double t0 = range[d][0], t1 = range[d][1], eps = 1e-9 * (t1 - t0);
+    const int knots = along_u ? b->NbUKnots() : b->NbVKnots();
+    double best_gap = std::numeric_limits<double>::infinity(), best = t0;
+    for (int k = 1; k <= knots; ++k) {
+      const double t = along_u ? b->UKnot(k) : b->VKnot(k);
+      if (t <= t0 + eps || t >= t1 - eps) continue;
+      for (double c : {range[1 - d][0], range[1 - d][1]}) {
+        const double gap = fold_back_gap(*b, !along_u, c, t0, t, t1, tol);
+        if (gap <= tol && gap < best_gap) best_gap = gap, best = t;
+      }
+    }
+    if (best_gap <= tol) cuts[d].push_back(best), changed = true;
+    cuts[d].push_back(t1);
+  }
+  if (!changed) return {piece};
+  std::vector<TopoDS_Face> out;
+  for (size_t i = 0; i + 1 < cuts[0].size(); ++i)
+    for (size_t j = 0; j + 1 < cuts[1].size(); ++j) {
+      // A segment of its own, as the division's pieces have: the face's box
+      // is its poles'.
+      Handle(Geom_BSplineSurface) segment = Handle(Geom_BSplineSurface)::DownCast(b->Copy());
+      segment->Segment(cuts[0][i], cuts[0][i + 1], cuts[1][j], cuts[1][j + 1]);
+      BRepBuilderAPI_MakeFace make(segment, Precision::Confusion());
+      if (!make.IsDone() || !BRepCheck_Analyzer(make.Face()).IsValid()) return {piece};
+      TopoDS_Face f = make.Face();
+      f.Orientation(piece.Orientation());
+      out.push_back(f);
+    }
+  return out;
 }
 
 // Knot values that split [t0, t1] (with their strength: 1 a jump, 2 and
@@ -295,9 +455,19 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
         const TopoDS_Face& f = TopoDS::Face(ex.Current());
         const TopoDS_Shape now = context->Apply(f);
         if (now.IsSame(f)) continue;
-        std::vector<TopoDS_Face> pieces;
+        // Loose pieces of no area (a strip collapsed onto a curve) carry no
+        // mesh: they go, and the sewing joins the pieces around them.
+        std::vector<TopoDS_Face> raw, pieces;
         for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
-          pieces.push_back(loose ? healed(TopoDS::Face(p.Current())) : TopoDS::Face(p.Current()));
+          if (!loose || !empty_piece(f, {TopoDS::Face(p.Current())})) raw.push_back(TopoDS::Face(p.Current()));
+        if (raw.empty()) continue;
+        if (loose) {
+          std::vector<TopoDS_Face> rebuilt;
+          for (const TopoDS_Face& piece : raw)
+            for (const TopoDS_Face& part : rebuild_piece(piece, 1e-3 * band)) rebuilt.push_back(part);
+          raw = std::move(rebuilt);
+        }
+        for (const TopoDS_Face& piece : raw) pieces.push_back(loose ? healed(piece) : piece);
         if (!std::all_of(pieces.begin(), pieces.end(), [](const TopoDS_Face& piece) {
               return !piece.IsNull() && BRepCheck_Analyzer(piece).IsValid();
             })) {
@@ -308,11 +478,10 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
             double u0, u1, v0, v1;
             BRepTools::UVBounds(f, u0, u1, v0, v1);
             const double eu = 1e-9 * (u1 - u0), ev = 1e-9 * (v1 - v0);
-            size_t i = 0;
-            for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next(), ++i) {
+            for (size_t i = 0; i < raw.size(); ++i) {
               if (!pieces[i].IsNull() && BRepCheck_Analyzer(pieces[i]).IsValid()) continue;
               double a0, a1, b0, b1;
-              BRepTools::UVBounds(TopoDS::Face(p.Current()), a0, a1, b0, b1);
+              BRepTools::UVBounds(raw[i], a0, a1, b0, b1);
               for (double t : {a0, a1})
                 if (t > u0 + eu && t < u1 - eu) banned[surface].insert({true, t});
               for (double t : {b0, b1})

@@ -241,13 +241,13 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   // pod is one skin whose root and tip caps are built in: flat strips folded
   // onto the chord, the root caps of the two halves back to back on y = 0,
   // each tip cap back to back with its strut's root cap. Split off at the
-  // crease, the caps are found as four coincident pairs and all eight go.
-  // Each strut is one skin, pinched to a line at its tip (the two sides of
-  // its boundary run along the same line with different parametrisations),
-  // and a planform plane. Split at the pinch, a strut's skin closes over its
-  // tip, so the repair takes out the four planes and nothing else; left
-  // whole, only the struts' removal with the planes closed the pod, and the
-  // struts' skins were left as open sheets.
+  // crease, each cap's end (its section collapsed onto the chord, run from
+  // the trailing edge to the leading edge and back) splits it in two at the
+  // leading edge: six caps in halves, found as six coincident pairs, go with
+  // the four planform planes. Each strut is one skin, pinched to a line at
+  // its tip (the two sides of its boundary run along the same line with
+  // different parametrisations), and a planform plane. Split at the pinch, a
+  // strut's skin closes over its tip.
   LoadOptions o;
   o.describe_only = true;
   const Model model = load_model(test::model_path("tbw_sugar_openvsp.stp"), o);
@@ -257,15 +257,24 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   CHECK(pod.faces == 8);
   CHECK(pod.bbox_max.y() == Approx(48.915).margin(0.01));
   CHECK(pod.role == "solid");
-  CHECK(pod.faces_removed == 12);
-  CHECK(p.duplicate_faces_removed == 8);
+  CHECK(pod.faces_removed == 16);
+  // The main wing and the horizontal tail: each half's skin carries its
+  // root cap, and the halves' caps lie back to back on y = 0. Their
+  // trailing-edge spans collapse to a point in every section (no normal
+  // there), so the crease is judged where a normal exists; the collapsed
+  // strips are dropped from the pieces. Both root caps go, in halves, with
+  // the two planform planes: one closed shell over both halves.
+  for (int k : {1, 2}) {
+    CHECK(p.components[k].role == "solid");
+    CHECK(p.components[k].faces_removed == 6);
+  }
+  CHECK(p.duplicate_faces_removed == 20);
   for (const Component& c : p.components) CHECK(c.role == "solid");
   // Every face taken out of any component lies inside one of the solids.
   CHECK(p.internal_faces_removed == 11);
-  // The main wing and the horizontal tail each sew into two shells, one per
-  // half, closed on its own: both halves stay. The aircraft is symmetric in
-  // y, so the faces kept on each side have the same area.
-  CHECK(model.num_faces() == 26);
+  // The aircraft is symmetric in y, so the faces kept on each side have the
+  // same area.
+  CHECK(model.num_faces() == 25);
   // The area on each side, summed over a uv grid (the faces are untrimmed
   // patches; the fuselage is one face across both sides), what lies on
   // y = 0 on neither side.
