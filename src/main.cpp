@@ -48,7 +48,9 @@ int main(int argc, char** argv) {
   }
   finish_run_options(app, cl);
   try {
-    cl.options.preparation_grace = 10;
+    // The repair before the union has no budget of its own (a component's
+    // sewing trials take seconds on a loaded machine): the net is wide.
+    cl.options.preparation_grace = 60;
     if (cl.info_only) {
       cl.options.load.describe_only = true;
       const CadFile cad = read_cad(cl.options.input, cl.options.load);

@@ -158,8 +158,8 @@ std::unique_ptr<Watchdog> preparation_hard_stop(const CadFile& cad, const RunOpt
   if (!(o.preparation_grace > 0)) return nullptr;
   const double budget = union_budget(cad, o.load);
   std::ostringstream msg;
-  msg << "the union of the components of '" << o.input << "' did not end within " << budget + o.preparation_grace
-      << " s (OpenCASCADE's general fuse did not stop at its --union-seconds budget of " << budget
+  msg << "the preparation of '" << o.input << "' did not end within " << budget + o.preparation_grace
+      << " s (its repair and union have a --union-seconds budget of " << budget
       << " s); rerun with --no-union to mesh the components where they lie";
   return std::make_unique<Watchdog>(budget + o.preparation_grace, msg.str());
 }
