@@ -21,6 +21,7 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
@@ -29,6 +30,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <ShapeFix_Solid.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -555,6 +557,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   const HalfModelPlanes half = half_model_planes(lo, hi, tol);
   // Repair each open component; collect the solids and sheets.
   std::vector<TopoDS_Shape> solids, sheets;
+  std::vector<TopoDS_Shape> invalid;  // solids no mending makes valid: for the union of meshes
   std::vector<int> solid_component, sheet_component;
   FaceList loose;
   std::vector<int> loose_component;
@@ -566,7 +569,25 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     const TopoDS_Shape& s = parts[k];
     if (s.ShapeType() == TopAbs_SOLID) {
       c.role = "solid";
-      solids.push_back(s);
+      // A solid as read may be invalid (a face turned inside out in its
+      // shell): the general fuse would then classify it wrongly and drop
+      // what lies outside. Mended first (ShapeFix_Solid orients its shells'
+      // faces); a solid it cannot mend goes to the union of meshes.
+      TopoDS_Shape solid = s;
+      if (!BRepCheck_Analyzer(solid).IsValid()) {
+        ShapeFix_Solid fix(TopoDS::Solid(solid));
+        fix.Perform();
+        const TopoDS_Shape mended = fix.Solid();
+        if (!mended.IsNull() && mended.ShapeType() == TopAbs_SOLID && BRepCheck_Analyzer(mended).IsValid()) {
+          solid = mended;  // its faces the same, some turned: their sources hold
+        } else {
+          c.route = "not united: its solid is not valid";
+          info.not_united.push_back(static_cast<int>(k) + 1);
+          invalid.push_back(s);
+          continue;
+        }
+      }
+      solids.push_back(solid);
       solid_component.push_back(static_cast<int>(k));
       continue;
     }
@@ -634,7 +655,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   }
 
   // Components the options send straight to the mesh-level union.
-  std::vector<TopoDS_Shape> apart;
+  std::vector<TopoDS_Shape> apart = invalid;
   for (int k : options.mesh_union)
     if (k < 1 || k > static_cast<int>(info.components.size()))
       throw Error("--mesh-union " + std::to_string(k) + ": the model has " + std::to_string(info.components.size()) +

@@ -4,12 +4,17 @@
 // CGAL first: OpenCASCADE defines a macro Handle that CGAL uses as a name.
 #include "tests/exact_intersections.h"
 
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -219,4 +224,38 @@ TEST_CASE("a component of two closed shells that cross each other is united piec
   CHECK(cgal_pairs(r->mesh) == 0);
   // A's 6, B's 14 and C's 10, less B's 1 inside C and C's 3 inside B.
   CHECK(area(r->mesh) == Approx(26.0).epsilon(0.005));
+}
+
+TEST_CASE("a solid read with a face turned inside out is mended before the union: nothing outside it is lost") {
+  // A = [0,2]x[0,1]x[0,1]; B = [1.5,2.5]x[0.25,0.75]x[0.25,0.75] crosses
+  // its x = 2 end; C = [-0.5,0.5]x[0.25,0.75]x[0.25,0.75] crosses its x = 0
+  // end, with one face turned inside out: its shell is badly oriented. Fused
+  // as read, C was taken for a hollow and its part outside A was lost (the
+  // mesh's area 11, exit 0). ShapeFix_Solid turns the face back first.
+  const test::TempDir dir("mesh_union_invalid");
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(2.0, 1.0, 1.0).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(1.5, 0.25, 0.25), 1.0, 0.5, 0.5).Shape();
+  const TopoDS_Shape good_c = BRepPrimAPI_MakeBox(gp_Pnt(-0.5, 0.25, 0.25), 1.0, 0.5, 0.5).Shape();
+  TopoDS_Shell shell;
+  BRep_Builder builder;
+  builder.MakeShell(shell);
+  bool turned = false;
+  for (TopExp_Explorer ex(good_c, TopAbs_FACE); ex.More(); ex.Next()) {
+    builder.Add(shell, turned ? ex.Current() : ex.Current().Reversed());
+    turned = true;
+  }
+  TopoDS_Solid c;
+  builder.MakeSolid(c);
+  builder.Add(c, shell);
+  REQUIRE_FALSE(BRepCheck_Analyzer(c).IsValid());
+  const auto r = mesh_file(write_compound({a, b, c}, dir / "boxes.brep"), LoadOptions{});
+  const Preparation& p = r->model->info().preparation;
+  REQUIRE(p.components.size() == 3);
+  CHECK(p.not_united.empty());
+  CHECK(p.united_at_mesh_level == 0);
+  for (const auto& comp : p.components)
+    CHECK((comp.route == "B-rep union" || comp.route == "the base others join"));
+  CHECK(r->exit_code() == kOk);
+  // A's area 10; each end cube adds its 5 faces of 0.25 and hides 0.25 of A.
+  require_clean(*r, 10.0 + 2 * (5 * 0.25 - 0.25));
 }
