@@ -48,6 +48,13 @@ bool mesh_within(const Geometry& g, const SizeFunction& h, FaceMesh& fm, const M
 // Triangles that do not pair stay; node ids do not change.
 void drop_back_to_back(SurfaceMesh& m);
 
+// Two faces that meet along two curves close together (a strut's sides at a
+// thin tip) may each mesh the same inner edge between the same two curve
+// nodes: an edge used four times. The edge is flipped inside one face (its
+// two triangles' quad takes the other diagonal) where the flip keeps their
+// orientation (counted in m.stats.shared_edges_flipped).
+void flip_shared_inner_edges(SurfaceMesh& m);
+
 // Hands the mesher the accuracy the size map was built for: p's deviation
 // bound, phi_c per face (the turn an inner edge may make) and the map's h_min.
 void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces);

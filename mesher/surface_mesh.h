@@ -34,6 +34,7 @@ struct MeshStats {
   int faces_relaxed = 0;        // of those, faces that needed the last-resort strategies
   int faces_lenient = 0;        // of those, faces only a lenient run closed (may hold inverted triangles)
   int faces_filled = 0;         // faces whose front's leftover was closed by ear clipping
+  int shared_edges_flipped = 0;  // inner edges two faces both meshed, flipped in one (flip_shared_inner_edges)
   int back_to_back_dropped = 0; // triangles dropped in pairs where two faces lie back to back (no thickness)
 };
 

@@ -120,7 +120,8 @@ nlohmann::json report_json(const RunReport& r) {
                    {"faces_relaxed", st.faces_relaxed},
                    {"faces_lenient", st.faces_lenient},
                    {"faces_filled", st.faces_filled},
-                   {"back_to_back_dropped", st.back_to_back_dropped}};
+                   {"back_to_back_dropped", st.back_to_back_dropped},
+                   {"shared_edges_flipped", st.shared_edges_flipped}};
     j["mesh_union"] = {{"united", r.mesh_union.united},
                        {"failed", std::count_if(r.mesh_union.failures.begin(), r.mesh_union.failures.end(),
                                                 [](const std::string& f) { return !f.empty(); })},

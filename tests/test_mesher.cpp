@@ -830,3 +830,30 @@ TEST_CASE("a pair of triangles on the same nodes facing apart is dropped; every 
   CHECK(m.stats.back_to_back_dropped == 0);
   CHECK(m.tris.size() == 5);
 }
+
+TEST_CASE("an inner edge two faces both mesh between the same curve nodes is flipped in one of them") {
+  // Faces 1 and 2 meet along the curves through a = 0 and b = 1 (a thin
+  // strut's sides near its tip): face 1 meshes the quad a, d, b, c with the
+  // diagonal a-b, and so does face 2 with the quad a, e, b, f just above it.
+  // Edge a-b is used four times until face 1 takes the diagonal c-d.
+  SurfaceMesh m;
+  m.xyz = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), Vec3(0.5, -1, 0), Vec3(0.5, 1, 0.1), Vec3(0.5, -1, 0.1)};
+  m.tris = {{0, 1, 2}, {1, 0, 3}, {1, 0, 4}, {0, 1, 5}};
+  m.tri_face = {1, 1, 2, 2};
+  for (const auto& t : m.tris) m.tri_uv.push_back({m.xyz[t[0]].head<2>(), m.xyz[t[1]].head<2>(), m.xyz[t[2]].head<2>()});
+  flip_shared_inner_edges(m);
+  CHECK(m.stats.shared_edges_flipped == 1);
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& t : m.tris)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+  CHECK(uses[{0, 1}] == 2);
+  CHECK(uses[{2, 3}] == 2);
+  // Face 1's triangles keep their side (normal +z) and their uv follow their nodes.
+  for (size_t t = 0; t < 2; ++t) {
+    const auto& n = m.tris[t];
+    CHECK((m.xyz[n[1]] - m.xyz[n[0]]).cross(m.xyz[n[2]] - m.xyz[n[0]]).z() > 0);
+    for (int k = 0; k < 3; ++k) CHECK((m.tri_uv[t][k] - m.xyz[n[k]].head<2>()).norm() == 0);
+  }
+  CHECK(m.tri_face[0] == 1);
+  CHECK(m.tri_face[1] == 1);
+}
