@@ -467,16 +467,7 @@ void measure_junction(const SurfaceMesh& s, const Geometry& g, MeshUnionResult& 
   u.max_junction_gap = 0;
   u.junction_nodes_off = 0;
   u.junction_nodes_unprojected = 0;
-  for (const auto& [n, faces] : faces_of) {
-    double gap = 0;
-    bool projected = true;
-    for (auto [f, uv] : faces)
-      if (g.project_to_face(f, s.xyz[n], uv)) gap = std::max(gap, (g.eval_face(f, uv).p - s.xyz[n]).norm());
-      else projected = false;
-    if (projected) u.max_junction_gap = std::max(u.max_junction_gap, gap);
-    u.junction_nodes_unprojected += !projected;
-    u.junction_nodes_off += !projected || gap > off;
-  }
+  for (const auto& [n, faces] : faces_of) count_junction_node(u, g, s.xyz[n], {faces.begin(), faces.end()}, off);
 }
 
 }  // namespace

@@ -354,6 +354,18 @@ void keep_apart(SurfaceMesh& r, const std::vector<Vec3>& before_snap) {
 
 }  // namespace
 
+void count_junction_node(MeshUnionResult& u, const Geometry& g, const Vec3& x, std::vector<std::pair<int, Vec2>> on,
+                         double off) {
+  double gap = 0;
+  bool projected = true;
+  for (auto& [face, uv] : on)
+    if (g.project_to_face(face, x, uv)) gap = std::max(gap, (g.eval_face(face, uv).p - x).norm());
+    else projected = false;
+  if (projected) u.max_junction_gap = std::max(u.max_junction_gap, gap);
+  u.junction_nodes_unprojected += !projected;
+  u.junction_nodes_off += !projected || gap > off;
+}
+
 MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
                              const std::vector<std::vector<int>>& parts) {
   MeshUnionResult out;
@@ -635,17 +647,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (EI e : m.edges())
     if (base->cut[e]) out.junction.push_back({used[id[m.vertex(e, 0)]], used[id[m.vertex(e, 1)]]});
   // Each junction node's distance from each of its surfaces, as it ends.
-  for (auto& [v, on] : junction_faces) {
-    const int n = used[id[v]];
-    double gap = 0;
-    bool projected = true;
-    for (auto& [face, uv] : on)
-      if (g.project_to_face(face, r.xyz[n], uv)) gap = std::max(gap, (g.eval_face(face, uv).p - r.xyz[n]).norm());
-      else projected = false;
-    if (projected) out.max_junction_gap = std::max(out.max_junction_gap, gap);
-    out.junction_nodes_unprojected += !projected;
-    out.junction_nodes_off += !projected || gap > 1e-9 * diag;
-  }
+  for (auto& [v, on] : junction_faces) count_junction_node(out, g, r.xyz[used[id[v]]], std::move(on), 1e-9 * diag);
   s = std::move(r);
   return out;
 }

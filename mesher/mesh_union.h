@@ -19,6 +19,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/geometry.h"
@@ -39,6 +40,13 @@ struct MeshUnionResult {
   double max_junction_gap = 0;        // largest distance of a projected junction node from either surface
   std::vector<std::array<int, 2>> junction;  // the cut edges (node pairs) in the united mesh
 };
+
+// Counts junction node x into u: projected onto the surface of each face of
+// `on` (face, uv to start from), its largest distance from them goes into
+// max_junction_gap; a node some projection does not reach is unprojected;
+// either, or a distance over `off`, counts it as off the surfaces.
+void count_junction_node(MeshUnionResult& u, const Geometry& g, const Vec3& x,
+                         std::vector<std::pair<int, Vec2>> on, double off);
 
 MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeFunction& h,
                              const std::vector<std::vector<int>>& parts);
