@@ -43,6 +43,11 @@ constexpr double kJump = 3.0;        // parametric speed ratio across a knot lin
 constexpr double kStripBands = 20;   // narrowest strip a jump split may leave, in fold bands (10 default h_min)
 constexpr int kRounds = 3;            // divisions tried, each without the faces the last one broke
 
+// The point of s on the iso-line `along_u ? u = t : v = t` at w of the other parameter.
+gp_Pnt iso_point(const Geom_Surface& s, bool along_u, double t, double w) {
+  return along_u ? s.Value(t, w) : s.Value(w, t);
+}
+
 // Unit normal of s at (u, v); false where it is undefined.
 bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
   gp_Pnt p;
@@ -113,7 +118,7 @@ double strip_width(const Geom_BSplineSurface& s, bool along_u, double t_a, doubl
   std::vector<double> d;
   for (int j = 0; j <= kSamples / 3; ++j) {
     const double w = lo + (hi - lo) * (j + 0.5) / (kSamples / 3 + 1);
-    d.push_back((along_u ? s.Value(t_a, w) : s.Value(w, t_a)).Distance(along_u ? s.Value(t_b, w) : s.Value(w, t_b)));
+    d.push_back(iso_point(s, along_u, t_a, w).Distance(iso_point(s, along_u, t_b, w)));
   }
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return d[d.size() / 2];
@@ -131,8 +136,7 @@ bool flat_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, double t
   double widest = 0;
   for (int j = 0; j <= kSamples; ++j) {
     const double w = lo + (hi - lo) * (j + 0.5) / (kSamples + 1);
-    widest = std::max(widest, (along_u ? s.Value(t_a, w) : s.Value(w, t_a))
-                                  .Distance(along_u ? s.Value(t_b, w) : s.Value(w, t_b)));
+    widest = std::max(widest, iso_point(s, along_u, t_a, w).Distance(iso_point(s, along_u, t_b, w)));
   }
   if (!(widest > band)) return false;
   std::vector<gp_Pnt> points;
@@ -164,10 +168,10 @@ bool collapsed_strip(const Geom_BSplineSurface& s, bool along_u, double t_a, dou
                      double tol) {
   for (int j = 0; j <= kSamples; ++j) {
     const double w = lo + (hi - lo) * j / kSamples;
-    const gp_Pnt a = along_u ? s.Value(t_a, w) : s.Value(w, t_a);
+    const gp_Pnt a = iso_point(s, along_u, t_a, w);
     for (int i = 1; i <= 4; ++i) {
       const double t = t_a + (t_b - t_a) * i / 4;
-      if ((along_u ? s.Value(t, w) : s.Value(w, t)).Distance(a) > tol) return false;
+      if (iso_point(s, along_u, t, w).Distance(a) > tol) return false;
     }
   }
   return true;
@@ -197,7 +201,7 @@ double distance_to(const std::vector<gp_Pnt>& a, const std::vector<gp_Pnt>& b) {
 double fold_back_gap(const Geom_BSplineSurface& s, bool along_u, double c, double t0, double t, double t1,
                      double tol) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  auto at = [&](double w) { return along_u ? s.Value(c, w) : s.Value(w, c); };
+  auto at = [&](double w) { return iso_point(s, along_u, c, w); };
   if (at(t0).Distance(at(t1)) > tol) return kInf;
   // The line turns back at t: its steps just before and just after point
   // opposite ways (the samples below are only taken where it does).
@@ -395,16 +399,19 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
   bool crease_only_;  // only folds along most of a line (splits_at) that bound a flat cap
 };
 
+double area_of(const TopoDS_Face& f) {
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(f, g);
+  return std::abs(g.Mass());
+}
+
+// True when `piece` has no area next to its face's `whole_area`.
+bool empty(const TopoDS_Face& piece, double whole_area) { return area_of(piece) <= 1e-9 * whole_area; }
+
 // True when a piece of f has no area: its surface collapses there.
 bool empty_piece(const TopoDS_Face& f, const std::vector<TopoDS_Face>& pieces) {
-  GProp_GProps whole;
-  BRepGProp::SurfaceProperties(f, whole);
-  for (const TopoDS_Face& piece : pieces) {
-    GProp_GProps g;
-    BRepGProp::SurfaceProperties(piece, g);
-    if (std::abs(g.Mass()) <= 1e-9 * std::abs(whole.Mass())) return true;
-  }
-  return false;
+  const double whole = area_of(f);
+  return std::any_of(pieces.begin(), pieces.end(), [&](const TopoDS_Face& piece) { return empty(piece, whole); });
 }
 
 // A valid copy of `piece`, healed by ShapeFix_Shape when it is not valid
@@ -458,8 +465,9 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
         // Loose pieces of no area (a strip collapsed onto a curve) carry no
         // mesh: they go, and the sewing joins the pieces around them.
         std::vector<TopoDS_Face> raw, pieces;
+        const double whole_area = loose ? area_of(f) : 0;
         for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
-          if (!loose || !empty_piece(f, {TopoDS::Face(p.Current())})) raw.push_back(TopoDS::Face(p.Current()));
+          if (!loose || !empty(TopoDS::Face(p.Current()), whole_area)) raw.push_back(TopoDS::Face(p.Current()));
         if (raw.empty()) continue;
         if (loose) {
           std::vector<TopoDS_Face> rebuilt;
