@@ -4,7 +4,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <oneapi/tbb/global_control.h>
+
 #include <atomic>
+#include <new>
 #include <chrono>
 #include <filesystem>
 #include <thread>
@@ -18,14 +21,19 @@ std::string child_result_path() {
   return (dir / ("sizemesh-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".child")).string();
 }
 
-ChildOutcome run_in_child(const std::function<bool(const std::string& path)>& work, double seconds,
+ChildOutcome run_in_child(const std::function<bool(const std::string& path, bool threads)>& work, double seconds,
                           const std::string& path) {
+  // oneTBB ends its workers only when nothing else holds the scheduler (no
+  // live task arena, no other user in the process); otherwise the child
+  // works on one thread.
+  tbb::task_scheduler_handle scheduler{tbb::attach{}};
+  const bool threads = tbb::finalize(scheduler, std::nothrow);
   const pid_t pid = ::fork();
   if (pid < 0) return ChildOutcome::NoChild;
   if (pid == 0) {
     bool ok = false;
     try {
-      ok = work(path);
+      ok = work(path, threads);
     } catch (...) {
       ok = false;
     }

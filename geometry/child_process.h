@@ -15,10 +15,13 @@ namespace sizemesh {
 
 enum class ChildOutcome { Done, Failed, TimedOut, NoChild };
 
-// Runs `work(path)` in a child process that must write its result to `path`
-// and return true, within `seconds`; the parent then reads `path` (removed by
-// the caller). NoChild: fork failed (the caller may run the work itself).
-ChildOutcome run_in_child(const std::function<bool(const std::string& path)>& work, double seconds,
+// Runs `work(path, threads)` in a child process that must write its result
+// to `path` and return true, within `seconds`; the parent then reads `path`
+// (removed by the caller). NoChild: fork failed (the caller may run the work
+// itself). `threads` is true when the parent's oneTBB workers were ended
+// before the fork, so the child may start its own (a fork copies only the
+// calling thread: workers left running would be waited for forever).
+ChildOutcome run_in_child(const std::function<bool(const std::string& path, bool threads)>& work, double seconds,
                           const std::string& path);
 
 // A scratch file name unique to this process and call.

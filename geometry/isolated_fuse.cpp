@@ -1,5 +1,6 @@
 // A general fuse run in a child process (fuse_in_child, geometry/occt_model.h).
 #include <BinTools.hxx>
+#include <OSD_ThreadPool.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -53,6 +54,12 @@ FuseStep read_step(const std::string& path, const TopTools_IndexedMapOfShape& in
   return s;
 }
 
+// OpenCASCADE's own thread pool (used by some checks inside the fuse) keeps
+// its threads for the life of the process; a forked child would wait for
+// them forever. Made with no worker thread before anything uses it, it runs
+// its jobs on the calling thread, in the parent and in every child.
+const bool kSerialPool = OSD_ThreadPool::DefaultPool(1)->NbThreads() == 1;
+
 }  // namespace
 
 FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
@@ -61,7 +68,9 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
   for (const auto& p : parts) TopExp::MapShapes(p, TopAbs_FACE, inputs);
   const std::string path = child_result_path();
   const ChildOutcome outcome = run_in_child(
-      [&](const std::string& file) { return write_step(file, here(false), inputs); },
+      [&](const std::string& file, bool threads) {
+        return write_step(file, here(threads && kSerialPool && !OSD_ThreadPool::DefaultPool()->HasThreads()), inputs);
+      },
       seconds + 1.0, path);
   FuseStep out;
   switch (outcome) {

@@ -90,9 +90,10 @@ struct FuseStep {
   int pocket_faces = 0;  // faces of enclosed air pockets dropped
 };
 
-// geometry/isolated_fuse.cpp: `here(false)` (a fuse of `parts`, one thread)
-// run in a child process that is ended at `seconds` whether or not the fuse
-// listens, its result handed back exactly (BinTools); `here(true)` in this
+// geometry/isolated_fuse.cpp: `here(parallel)` (a fuse of `parts`) run in a
+// child process that is ended at `seconds` whether or not the fuse listens,
+// its result handed back exactly (BinTools); parallel when the child may
+// start threads (run_in_child), else on one thread. `here(true)` in this
 // process when no child can be made.
 FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
                        const std::function<FuseStep(bool parallel)>& here);

@@ -3,8 +3,19 @@
 // components silently, and a run that ends when OpenCASCADE does not.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/info.h>
+#include <oneapi/tbb/parallel_for.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "geometry/child_process.h"
 #include "geometry/iges_layout.h"
 #include "geometry/model.h"
 #include "tests/cli_runner.h"
@@ -231,4 +242,33 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   const auto& u = j["mesh_union"];
   CHECK(u["max_junction_gap"].is_number());
   CHECK(u["junction_nodes_unprojected"].get<int>() <= u["junction_nodes_off_surface"].get<int>());
+}
+
+TEST_CASE("a child process started after the parent used oneTBB works on every core and ends", "[union]") {
+  std::atomic<int> warm{0};
+  tbb::parallel_for(0, 100000, [&](int) { ++warm; });  // the parent's workers are up
+  const std::string path = child_result_path();
+  const ChildOutcome outcome = run_in_child(
+      [](const std::string& file, bool threads) {
+        std::mutex m;
+        std::set<std::thread::id> ids;
+        tbb::parallel_for(tbb::blocked_range<int>(0, 64, 1), [&](const tbb::blocked_range<int>&) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(2));
+          const std::lock_guard<std::mutex> lock(m);
+          ids.insert(std::this_thread::get_id());
+        });
+        std::ofstream(file) << threads << " " << ids.size() << "\n";
+        return true;
+      },
+      60.0, path);
+  REQUIRE(outcome == ChildOutcome::Done);
+  int threads = -1, used = 0;
+  std::ifstream(path) >> threads >> used;
+  std::remove(path.c_str());
+  CHECK(threads == 1);
+  if (tbb::info::default_concurrency() >= 2) CHECK(used >= 2);
+  // The parent's own parallel work goes on after the fork.
+  warm = 0;
+  tbb::parallel_for(0, 1000, [&](int) { ++warm; });
+  CHECK(warm == 1000);
 }
