@@ -337,6 +337,12 @@ enum class Lines { Both, U, V };
 // Lines (along u, at t) of a surface that a division must not split at.
 using Banned = std::map<const Geom_Surface*, std::set<std::pair<bool, double>>>;
 
+size_t count_banned(const Banned& banned) {
+  size_t n = 0;
+  for (const auto& [surface, lines] : banned) n += lines.size();
+  return n;
+}
+
 // Split values of one face's surface: its C0 knots (multiplicity at least the
 // degree) where the surface folds or its parametric speed jumps.
 class FoldSplitter : public ShapeUpgrade_SplitSurface {
@@ -441,6 +447,7 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
   std::set<const Geom_Surface*> whole;
   Banned banned;
   for (int round = 0; round < kRounds; ++round) {
+    const size_t whole_before = whole.size(), banned_before = count_banned(banned);
     try {
       Handle(ShapeUpgrade_FaceDivide) faces = new ShapeUpgrade_FaceDivide;
       faces->SetSplitSurfaceTool(new FoldSplitter(band, lines, whole, banned, only, loose));
@@ -450,35 +457,56 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       if (!division.Perform() || !division.Status(ShapeExtend_DONE)) return shape;
       const TopoDS_Shape result = division.Result();
       if (result.IsNull()) return shape;
-      // The divided edges keep their old flags: recompute them (and the
-      // tolerances they need) before judging the result.
-      BRepLib::SameParameter(result, Precision::Confusion(), true);
-      // Each face the division replaced, with its pieces (one piece: only its
-      // edges were divided, by a neighbour's split).
+      // Each face the division replaced, with what replaced it (one face:
+      // only its edges were divided, by a neighbour's split).
       const Handle(ShapeBuild_ReShape) context = division.GetContext();
-      std::vector<std::pair<TopoDS_Face, std::vector<TopoDS_Face>>> replaced;
-      bool valid = true;
+      std::vector<std::pair<TopoDS_Face, TopoDS_Shape>> changed;
       for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
         const TopoDS_Face& f = TopoDS::Face(ex.Current());
         const TopoDS_Shape now = context->Apply(f);
-        if (now.IsSame(f)) continue;
+        if (!now.IsSame(f)) changed.emplace_back(f, now);
+      }
+      // The divided edges keep their old flags: recompute them (and the
+      // tolerances they need) before judging the result, over the whole
+      // shape (edges the division left may not be same-parameter either).
+      BRepLib::SameParameter(result, Precision::Confusion(), true);
+      // Each changed face's pieces (with `loose`, rebuilt and healed each on
+      // its own), then one check of them all, on both cores.
+      struct Change {
+        TopoDS_Face face;
+        std::vector<TopoDS_Face> raw, pieces;
+      };
+      std::vector<Change> changes;
+      TopoDS_Compound all_pieces;
+      BRep_Builder cb;
+      cb.MakeCompound(all_pieces);
+      for (const auto& [f, now] : changed) {
         // Loose pieces of no area (a strip collapsed onto a curve) carry no
         // mesh: they go, and the sewing joins the pieces around them.
-        std::vector<TopoDS_Face> raw, pieces;
+        Change c{f, {}, {}};
         const double whole_area = loose ? area_of(f) : 0;
         for (TopExp_Explorer p(now, TopAbs_FACE); p.More(); p.Next())
-          if (!loose || !empty(TopoDS::Face(p.Current()), whole_area)) raw.push_back(TopoDS::Face(p.Current()));
-        if (raw.empty()) continue;
+          if (!loose || !empty(TopoDS::Face(p.Current()), whole_area)) c.raw.push_back(TopoDS::Face(p.Current()));
+        if (c.raw.empty()) continue;
         if (loose) {
           std::vector<TopoDS_Face> rebuilt;
-          for (const TopoDS_Face& piece : raw)
+          for (const TopoDS_Face& piece : c.raw)
             for (const TopoDS_Face& part : rebuild_piece(piece, 1e-3 * band)) rebuilt.push_back(part);
-          raw = std::move(rebuilt);
+          c.raw = std::move(rebuilt);
         }
-        for (const TopoDS_Face& piece : raw) pieces.push_back(loose ? healed(piece) : piece);
-        if (!std::all_of(pieces.begin(), pieces.end(), [](const TopoDS_Face& piece) {
-              return !piece.IsNull() && BRepCheck_Analyzer(piece).IsValid();
-            })) {
+        for (const TopoDS_Face& piece : c.raw) {
+          c.pieces.push_back(loose ? healed(piece) : piece);
+          if (!c.pieces.back().IsNull()) cb.Add(all_pieces, c.pieces.back());
+        }
+        changes.push_back(std::move(c));
+      }
+      const BRepCheck_Analyzer check(all_pieces, true, true);
+      auto good = [&](const TopoDS_Face& piece) { return !piece.IsNull() && check.IsValid(piece); };
+      std::vector<std::pair<TopoDS_Face, std::vector<TopoDS_Face>>> replaced;
+      bool valid = true;
+      for (Change& c : changes) {
+        const TopoDS_Face& f = c.face;
+        if (!std::all_of(c.pieces.begin(), c.pieces.end(), good)) {
           const Geom_Surface* surface = BRep_Tool::Surface(f).get();
           if (loose) {
             // The lines that bound a bad piece are not tried again; the
@@ -486,10 +514,10 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
             double u0, u1, v0, v1;
             BRepTools::UVBounds(f, u0, u1, v0, v1);
             const double eu = 1e-9 * (u1 - u0), ev = 1e-9 * (v1 - v0);
-            for (size_t i = 0; i < raw.size(); ++i) {
-              if (!pieces[i].IsNull() && BRepCheck_Analyzer(pieces[i]).IsValid()) continue;
+            for (size_t i = 0; i < c.raw.size(); ++i) {
+              if (good(c.pieces[i])) continue;
               double a0, a1, b0, b1;
-              BRepTools::UVBounds(raw[i], a0, a1, b0, b1);
+              BRepTools::UVBounds(c.raw[i], a0, a1, b0, b1);
               for (double t : {a0, a1})
                 if (t > u0 + eu && t < u1 - eu) banned[surface].insert({true, t});
               for (double t : {b0, b1})
@@ -497,17 +525,23 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
             }
           } else {
             whole.insert(surface);
-            if (empty_piece(f, pieces)) collapsed.insert(surface);
+            if (empty_piece(f, c.pieces)) collapsed.insert(surface);
           }
           valid = false;
         }
-        replaced.push_back({f, std::move(pieces)});
+        replaced.push_back({f, std::move(c.pieces)});
       }
-      if (!valid) continue;
+      // The next round divides the same faces again unless this one left
+      // more of them whole (or banned more lines): it would fail alike.
+      if (!valid) {
+        if (whole.size() == whole_before && count_banned(banned) == banned_before) return shape;
+        continue;
+      }
       // A closed shape stays closed (an open one gains free curves where its
       // free boundary is divided).
       if (!loose &&
-          ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) || !BRepCheck_Analyzer(result).IsValid()))
+          ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) ||
+           !BRepCheck_Analyzer(result, true, true).IsValid()))
         return shape;
       BRep_Builder b;
       TopoDS_Compound loose_faces;
