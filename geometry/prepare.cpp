@@ -351,22 +351,23 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   // component's size), judged by the free curves left once coincident faces
   // (two halves' root caps, back to back) are out: kept, they would lie
   // inside the closed body.
+  // The rest starts from the sewing at `tol` (the ladder's first rung).
+  FaceList current;
+  Sewn now;
   for (double t : {tol, 10 * tol, 100 * tol}) {
     if (t > 1e-3 * component_diagonal && t > tol) break;
-    FaceList current = faces;
-    Sewn s = sew(current, t);
-    const int dropped = pairs.empty() ? 0 : drop_coincident(faces, pairs, t, current, s);
+    FaceList trial = faces;
+    Sewn s = sew(trial, t);
+    const int dropped = pairs.empty() ? 0 : drop_coincident(faces, pairs, t, trial, s);
     if (s.free_curves == 0 && TopExp_Explorer(s.shape, TopAbs_SHELL).More()) {
       r.closed = s.shape;
       r.sewn = s;
-      r.kept = current;
+      r.kept = trial;
       r.duplicates = dropped;
       return r;
     }
+    if (t == tol) current = trial, now = s, r.duplicates = dropped;
   }
-  FaceList current = faces;
-  Sewn now = sew(current, tol);
-  r.duplicates = drop_coincident(faces, pairs, tol, current, now);
   // Faces on free curves, best first, while each removal closes more. What
   // is taken out stays under half the component's area: an internal plane or
   // a cap, never the skin that bounds the body.
