@@ -461,7 +461,14 @@ double diagonal_of(const Component& c) { return (c.bbox_max - c.bbox_min).norm()
 // or a null shape when the fuse fails.
 TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
                             double tol, const Deadline& deadline, const Follow& follow, Preparation& info) {
-  std::vector<TopoDS_Shape> parts = bodies;
+  // The bodies are one argument: the fuse intersects only shapes of
+  // different arguments, so bodies already united (or left apart for the
+  // mesh-level union) are not intersected with each other again.
+  TopoDS_Compound all_bodies;
+  BRep_Builder builder;
+  builder.MakeCompound(all_bodies);
+  for (const auto& s : bodies) builder.Add(all_bodies, s);
+  std::vector<TopoDS_Shape> parts{all_bodies};
   parts.insert(parts.end(), sheets.begin(), sheets.end());
   const FuseStep step = fuse_in_child(parts, deadline.remaining(), [&](bool parallel) {
     FuseStep out;
