@@ -266,10 +266,17 @@ bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid,
 // where another body touches the face (a jury strut's foot on a strut), or be
 // misjudged by the classifier that close to the boundary (a planform plane
 // in a thin wing).
+// Solids whose box holds no more than half the points are not asked: the
+// classifier can take seconds a point on a solid with crossing faces.
 bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, double tol) {
   const std::vector<gp_Pnt> points = interior_points(f, 5);
-  for (const auto& s : solids)
-    if (mostly_inside(points, s, tol)) return true;
+  for (const auto& s : solids) {
+    Bnd_Box box;
+    BRepBndLib::Add(s, box, false);
+    box.Enlarge(tol);
+    const auto in_box = std::count_if(points.begin(), points.end(), [&](const gp_Pnt& p) { return !box.IsOut(p); });
+    if (2 * in_box > static_cast<long>(points.size()) && mostly_inside(points, s, tol)) return true;
+  }
   return false;
 }
 
