@@ -721,6 +721,13 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   }
   std::sort(info.not_united.begin(), info.not_united.end());
   info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
+  // --info stops here: the last splits serve the mesher, and a description
+  // of the file has no use for them.
+  if (options.describe_only) {
+    out.shape = result;
+    info.faces_after = static_cast<int>(faces_of(out.shape).size());
+    return out;
+  }
   // Folds narrower than half the default smallest element become curves.
   int folds = 0;
   out.shape = split_folds(result, kFoldBand * diagonal, follow, folds);
