@@ -261,24 +261,37 @@ bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid,
   return 2 * in > static_cast<int>(points.size());
 }
 
-// True when the face lies inside one of the solids or on its boundary: most
-// of a few points spread over it do, for one solid. One point alone may sit
-// where another body touches the face (a jury strut's foot on a strut), or be
-// misjudged by the classifier that close to the boundary (a planform plane
-// in a thin wing).
-// Solids whose box holds no more than half the points are not asked: the
-// classifier can take seconds a point on a solid with crossing faces.
-bool inside_any(const TopoDS_Face& f, const std::vector<TopoDS_Shape>& solids, double tol) {
-  const std::vector<gp_Pnt> points = interior_points(f, 5);
-  for (const auto& s : solids) {
-    Bnd_Box box;
-    BRepBndLib::Add(s, box, false);
-    box.Enlarge(tol);
-    const auto in_box = std::count_if(points.begin(), points.end(), [&](const gp_Pnt& p) { return !box.IsOut(p); });
-    if (2 * in_box > static_cast<long>(points.size()) && mostly_inside(points, s, tol)) return true;
+// Solids asked whether a face lies inside one of them or on its boundary:
+// most of a few points spread over it do, for one solid. One point alone may
+// sit where another body touches the face (a jury strut's foot on a strut), or
+// be misjudged by the classifier that close to the boundary (a planform plane
+// in a thin wing). Solids whose box holds no more than half the points are
+// not asked: the classifier can take seconds a point on a solid with crossing
+// faces.
+class Solids {
+ public:
+  Solids(const std::vector<TopoDS_Shape>& solids, double tol) : solids_(solids), tol_(tol) {
+    for (const auto& s : solids_) {
+      boxes_.emplace_back();
+      BRepBndLib::Add(s, boxes_.back(), false);
+      boxes_.back().Enlarge(tol);
+    }
   }
-  return false;
-}
+  bool hold(const TopoDS_Face& f) const {
+    const std::vector<gp_Pnt> points = interior_points(f, 5);
+    for (size_t i = 0; i < solids_.size(); ++i) {
+      const auto in_box =
+          std::count_if(points.begin(), points.end(), [&](const gp_Pnt& p) { return !boxes_[i].IsOut(p); });
+      if (2 * in_box > static_cast<long>(points.size()) && mostly_inside(points, solids_[i], tol_)) return true;
+    }
+    return false;
+  }
+
+ private:
+  std::vector<TopoDS_Shape> solids_;
+  std::vector<Bnd_Box> boxes_;
+  double tol_;
+};
 
 // The solids bounded by the shells of a sewn shape (a wing whose halves
 // close each on its own sews into two shells), or none when one of them
@@ -373,7 +386,11 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       r.duplicates = dropped;
       return r;
     }
-    if (t == tol) current = trial, now = s, r.duplicates = dropped;
+    if (t == tol) {
+      current = trial;
+      now = s;
+      r.duplicates = dropped;
+    }
   }
   // Faces on free curves, best first, while each removal closes more. What
   // is taken out stays under half the component's area: an internal plane or
@@ -450,8 +467,9 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   }
   // A cap lying on a face (a planform plane and the cap over its rim) bounds no volume.
   if (solids.empty() || volume_of(solids) < 1e-6 * std::pow(component_diagonal, 3)) return {};
+  const Solids inside(solids, tol);
   for (const auto& f : removed) {
-    if (inside_any(f, solids, tol)) ++r.internal;
+    if (inside.hold(f)) ++r.internal;
     else r.sheets.push_back(f);
   }
   r.sewn = now;
@@ -512,8 +530,9 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
   for (const auto& s : sheets)
     for (const auto& f : faces_of(s)) sheet_faces.Add(f);
   // Sheet pieces inside a body (or on its surface) go; every other piece keeps its source.
+  const Solids inside(solids, tol);
   for (const auto& [f, piece] : step.pieces) {
-    if (sheet_faces.Contains(f) && inside_any(piece, solids, tol)) dropped.Add(piece);
+    if (sheet_faces.Contains(f) && inside.hold(piece)) dropped.Add(piece);
     else follow(f, piece);
   }
   info.sheets_imprinted = static_cast<int>(sheets.size());
@@ -664,8 +683,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   }
   // Faces taken out of one component may lie inside another one (the plane
   // of the left tail inside the right tail): those are internal too.
+  const Solids inside(solids, tol);
   for (size_t i = 0; i < loose.size(); ++i) {
-    if (inside_any(loose[i], solids, tol)) ++info.internal_faces_removed;
+    if (inside.hold(loose[i])) ++info.internal_faces_removed;
     else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);
   }
 
