@@ -457,21 +457,14 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       if (!division.Perform() || !division.Status(ShapeExtend_DONE)) return shape;
       const TopoDS_Shape result = division.Result();
       if (result.IsNull()) return shape;
-      // Each face the division replaced, with what replaced it (one face:
-      // only its edges were divided, by a neighbour's split).
-      const Handle(ShapeBuild_ReShape) context = division.GetContext();
-      std::vector<std::pair<TopoDS_Face, TopoDS_Shape>> changed;
-      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
-        const TopoDS_Face& f = TopoDS::Face(ex.Current());
-        const TopoDS_Shape now = context->Apply(f);
-        if (!now.IsSame(f)) changed.emplace_back(f, now);
-      }
       // The divided edges keep their old flags: recompute them (and the
       // tolerances they need) before judging the result, over the whole
       // shape (edges the division left may not be same-parameter either).
       BRepLib::SameParameter(result, Precision::Confusion(), true);
-      // Each changed face's pieces (with `loose`, rebuilt and healed each on
-      // its own), then one check of them all, on both cores.
+      // Each face the division replaced, with its pieces (one piece: only its
+      // edges were divided, by a neighbour's split; with `loose`, rebuilt and
+      // healed each on its own), then one check of them all, on both cores.
+      const Handle(ShapeBuild_ReShape) context = division.GetContext();
       struct Change {
         TopoDS_Face face;
         std::vector<TopoDS_Face> raw, pieces;
@@ -480,7 +473,10 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       TopoDS_Compound all_pieces;
       BRep_Builder cb;
       cb.MakeCompound(all_pieces);
-      for (const auto& [f, now] : changed) {
+      for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& f = TopoDS::Face(ex.Current());
+        const TopoDS_Shape now = context->Apply(f);
+        if (now.IsSame(f)) continue;
         // Loose pieces of no area (a strip collapsed onto a curve) carry no
         // mesh: they go, and the sewing joins the pieces around them.
         Change c{f, {}, {}};

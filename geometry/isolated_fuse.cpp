@@ -57,7 +57,8 @@ FuseStep read_step(const std::string& path, const TopTools_IndexedMapOfShape& in
 // OpenCASCADE's own thread pool (used by some checks inside the fuse) keeps
 // its threads for the life of the process; a forked child would wait for
 // them forever. Made with no worker thread before anything uses it, it runs
-// its jobs on the calling thread, in the parent and in every child.
+// its jobs on the calling thread, in the parent and in every child; made
+// earlier by someone else, with threads, the child stays on one thread.
 const bool kSerialPool = OSD_ThreadPool::DefaultPool(1)->NbThreads() == 1;
 
 }  // namespace
@@ -69,7 +70,7 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
   const std::string path = child_result_path();
   const ChildOutcome outcome = run_in_child(
       [&](const std::string& file, bool threads) {
-        return write_step(file, here(threads && kSerialPool && !OSD_ThreadPool::DefaultPool()->HasThreads()), inputs);
+        return write_step(file, here(threads && kSerialPool), inputs);
       },
       seconds + 1.0, path);
   FuseStep out;
