@@ -115,6 +115,49 @@ bool inside_base(const Tracked& t, const std::vector<FI>& tris, const Mesh& base
   return true;
 }
 
+// Triangles the corefinement made without telling its visitor (it splits a
+// triangle whose corners all lie on the other mesh, where two surfaces touch
+// in a plane, by plain Euler operations) take the source triangle and CAD
+// face of a neighbour in the plane of the triangle they were split from, else
+// of any neighbour that has one.
+void adopt_orphans(Tracked& t) {
+  const Mesh& m = t.m;
+  auto normal = [&](FI f) {
+    std::array<Point, 3> p;
+    int k = 0;
+    for (VI v : CGAL::vertices_around_face(m.halfedge(f), m)) p[k++] = m.point(v);
+    return CGAL::unit_normal(p[0], p[1], p[2]);
+  };
+  std::vector<FI> orphans;
+  for (FI f : m.faces())
+    if (t.face[f] == 0) orphans.push_back(f);
+  for (int pass = 0; pass < 2 && !orphans.empty(); ++pass) {
+    for (bool changed = true; changed && !orphans.empty();) {
+      changed = false;
+      std::vector<FI> left;
+      for (FI f : orphans) {
+        const K::Vector_3 n = normal(f);
+        FI best = Mesh::null_face();
+        double best_dot = pass == 0 ? 1 - 1e-9 : -2;
+        for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) {
+          const FI g = m.face(m.opposite(h));
+          if (g == Mesh::null_face() || t.face[g] == 0) continue;
+          const double d = CGAL::to_double(n * normal(g));
+          if (d > best_dot) best_dot = d, best = g;
+        }
+        if (best == Mesh::null_face()) {
+          left.push_back(f);
+          continue;
+        }
+        t.face[f] = t.face[best];
+        t.tri[f] = t.tri[best];
+        changed = true;
+      }
+      orphans.swap(left);
+    }
+  }
+}
+
 // Carries the source triangle, CAD face and node through the corefinement.
 struct FollowState {
   Tracked* a = nullptr;
@@ -457,6 +500,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       return fail(folded ? "its mesh intersects itself, and its union with the rest does too"
                          : "the corefinement of its mesh with the rest failed");
     }
+    adopt_orphans(*base);
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
     base->m.remove_property_map(cut_now);

@@ -123,6 +123,30 @@ TEST_CASE("two crossing boxes united at mesh level: the analytic area, closed, j
   CHECK(on_junction >= u.junction_nodes);
 }
 
+TEST_CASE("two boxes touching in a plane united at mesh level: every triangle keeps a face of the model") {
+  // Where two meshes lie on one plane the corefinement cuts triangles by
+  // plain Euler operations, outside its visitor; every triangle kept still
+  // carries a face of the model (Pegasus's coincident root caps make the
+  // case that leaves such pieces in the result: tests/test_union.cpp).
+  const test::TempDir dir("mesh_union_touching");
+  // A = [0,1]^3; B = [1,2]x[0.25,0.75]x[0.25,0.75] stands on A's face x = 1.
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(1.0, 1.0, 1.0).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(1.0, 0.25, 0.25), 1.0, 0.5, 0.5).Shape();
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({a, b}, dir / "touching.brep"), load, 0.1);
+  const Preparation& p = r->model->info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  const int faces = r->model->num_faces();
+  int without = 0;
+  for (int f : r->mesh.tri_face) without += f < 1 || f > faces;
+  CHECK(without == 0);
+  // A's 6 and B's 2.5, less the square 0.5 x 0.5 on each.
+  require_clean(*r, 8.0);
+}
+
 TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the plane and on the cylinder") {
   const test::TempDir dir("mesh_union_cylinder");
   const double radius = 0.3;
