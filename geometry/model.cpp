@@ -19,6 +19,7 @@
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_DataMapOfShapeReal.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
@@ -228,21 +229,63 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
   }
   cad->tolerance = options.sewing_tolerance_rel * diag;
   if (!(cad->tolerance > 0) || !std::isfinite(cad->tolerance)) throw Error("sewing tolerance must be positive");
+  // Sewing two halves of a cap ruled between two curves, each parametrised
+  // its own way, can widen their shared edge's tolerance past the body's
+  // thickness, even once mended (planar_faces.cpp, sewn_edges.cpp). When an
+  // edge is that wide, the sewing is done again with the flat faces whose
+  // parametrisation collapses on their plane, where each face's curve is a
+  // projection, and kept when it is tighter.
   std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
-  if (options.sew && info.free_curves_before_sewing > 0) {
-    sewing = std::make_unique<BRepBuilderAPI_Sewing>(cad->tolerance);
-    sewing->Add(shape);
-    sewing->Perform();
+  TopTools_DataMapOfShapeShape on_plane;
+  const bool sew = options.sew && info.free_curves_before_sewing > 0;
+  if (sew) {
+    auto sewn = [&](const TopoDS_Shape& in, int& mended, double& widest) {
+      auto s = std::make_unique<BRepBuilderAPI_Sewing>(cad->tolerance);
+      s->Add(in);
+      s->Perform();
+      mended = 0;
+      widest = 0;
+      if (!s->SewedShape().IsNull()) {
+        mended = mend_sewn_edges(s->SewedShape(), cad->tolerance);
+        for (TopExp_Explorer e(s->SewedShape(), TopAbs_EDGE); e.More(); e.Next())
+          widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
+      }
+      return s;
+    };
+    double widest = 0;
+    sewing = sewn(shape, info.sewn_edges_mended, widest);
+    if (widest > 100 * cad->tolerance) {
+      int flat = 0, mended = 0;
+      TopTools_DataMapOfShapeShape rebuilt_faces;
+      const TopoDS_Shape flattened = flat_faces_before_sewing(
+          shape, cad->tolerance, [&](const TopoDS_Face& f, const TopoDS_Face& g) { rebuilt_faces.Bind(f, g); }, flat);
+      double widest_flat = 0;
+      if (flat > 0) {
+        auto on_planes = sewn(flattened, mended, widest_flat);
+        if (widest_flat < widest && !on_planes->SewedShape().IsNull()) {
+          sewing = std::move(on_planes);
+          info.sewn_edges_mended = mended;
+          info.flat_faces_before_sewing = flat;
+          on_plane = rebuilt_faces;
+        }
+      }
+    }
     if (!sewing->SewedShape().IsNull()) {
       shape = solids_from_closed_shells(sewing->SewedShape());
       info.sewn = true;
+    } else {
+      on_plane.Clear();
+      info.flat_faces_before_sewing = 0;
     }
   }
+  auto rebuilt = [&](const TopoDS_Shape& s) { return on_plane.IsBound(s) ? on_plane(s) : s; };
   shape = remove_zero_area_faces(shape, diag, info.zero_area_faces_removed, cad->area);
   info.free_curves_after_sewing = count_free_curves(shape);
   bbox_diagonal(shape, info.bbox_min, info.bbox_max);
-  for (const auto& [s, name] : names)
+  for (const auto& [named, name] : names) {
+    const TopoDS_Shape s = rebuilt(named);
     cad->names.emplace_back(sewing && sewing->IsModified(s) ? sewing->Modified(s) : s, name);
+  }
   cad->shape = shape;
   cad->info = info;
   return CadFile(cad);
@@ -262,6 +305,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
   try {
     // Unsewn faces are each a component of their own: repair and union need sewing.
     prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, info.diagonal(), options, info.preparation);
+    info.preparation.faces_made_planar += info.flat_faces_before_sewing;
   } catch (const Standard_Failure& e) {
     // The preparation only ever improves the model: without it, mesh what was read.
     prepared = PreparedShape{};

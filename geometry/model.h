@@ -61,6 +61,8 @@ struct ModelInfo {
   int solids = 0, shells = 0, faces = 0, curves = 0, points = 0;
   int faces_before_sewing = 0;   // sewing drops faces degenerate at its tolerance
   int zero_area_faces_removed = 0;  // collapsed faces that cannot carry a mesh
+  int flat_faces_before_sewing = 0;  // flat faces put on their plane before sewing (geometry/planar_faces.cpp)
+  int sewn_edges_mended = 0;         // sewn edges whose tolerance had grown, their curves projected afresh
   int free_curves_before_sewing = 0;
   int free_curves_after_sewing = 0;
   bool sewn = false;       // sewing was run

@@ -171,6 +171,16 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
 TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
                           const Follow& follow, int& rebuilt);
 
+// geometry/sewn_edges.cpp: edges of a sewn `shape` whose tolerance grew
+// past 100 times the sewing's `tol` get their curves on both faces projected
+// afresh from the edge's 3D curve, and tolerances made the least that holds
+// (the shape is changed in place). Returns how many became tighter.
+int mend_sewn_edges(const TopoDS_Shape& shape, double tol);
+
+// The same rebuild on faces not yet sewn, each face checked alone:
+// `follow(face, result)` for each, `rebuilt` counts them.
+TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, const Follow& follow, int& rebuilt);
+
 // geometry/flow_domain.cpp: the far field and the symmetry plane around the
 // prepared `body` (bounding box lo..hi, model tolerance `tol`). `source` is
 // updated for the body's faces the cut splits; `kind` gets Boundary::Farfield

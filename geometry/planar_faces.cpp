@@ -2,11 +2,13 @@
 // (planar_faces, geometry/occt_model.h).
 //
 // CAD writers export flat caps and root faces as B-splines ruled between two
-// curves; where those curves meet (a wing's root cap at its leading edge, or
-// where its blunt trailing edge collapses to a point) the parametrisation has
-// regions of zero area, which a front advancing in uv cannot fill, and a
-// Boolean cut at a coincident plane treats as a curved face. On the plane
-// itself uv is length, and the same edges bound it.
+// curves. Where those curves meet (a wing's root cap at its leading and
+// trailing edges) the parametrisation collapses: a front advancing in uv
+// folds its triangles over each other there; sewing a cap's two halves along
+// their chord, each parametrised its own way, widens the chord's tolerance to
+// a sizeable part of the wing (a general fuse then finds everything within
+// it in contact); and a Boolean cut at a coincident plane treats the cap as
+// a curved face. On the plane itself uv is length, and the same edges bound it.
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <BRepAdaptor_Curve.hxx>
@@ -67,25 +69,30 @@ bool point_like(const TopoDS_Edge& e, double tol) {
   return GCPnts_AbscissaPoint::Length(c, tol) <= tol;
 }
 
-// True when the face's parametrisation has no area over a region of it
-// (not just at a pole): the area element |Su x Sv| vanishes on at least a
-// row's worth of a grid over its uv box.
-bool collapses(const TopoDS_Face& f) {
+// True when the face's parametrisation has no area along a line of it: the
+// area element |Su x Sv| vanishes on a row's worth of a grid over its uv box.
+// With `borders`, the grid's rows and columns include the box's sides (a cap
+// ruled between two curves that meet at its ends collapses along both end
+// lines); without, it samples cell centres, where a collapse inside the face
+// shows.
+bool collapses(const TopoDS_Face& f, bool borders) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
   BRepAdaptor_Surface s(f, false);
-  constexpr int n = 9;
+  constexpr int n = 10;
+  const int rows = borders ? n + 1 : n;
+  const double shift = borders ? 0.0 : 0.5;
   double most = 0;
   std::vector<double> element;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < rows; ++j) {
       gp_Pnt p;
       gp_Vec du, dv;
-      s.D1(u0 + (u1 - u0) * (i + 0.5) / n, v0 + (v1 - v0) * (j + 0.5) / n, p, du, dv);
+      s.D1(u0 + (u1 - u0) * (i + shift) / n, v0 + (v1 - v0) * (j + shift) / n, p, du, dv);
       element.push_back(du.Crossed(dv).Magnitude());
       most = std::max(most, element.back());
     }
-  return std::count_if(element.begin(), element.end(), [&](double a) { return a <= 1e-9 * most; }) >= n;
+  return std::count_if(element.begin(), element.end(), [&](double a) { return a <= 1e-9 * most; }) >= rows;
 }
 
 // Face f (taken forward) rebuilt on `plane` with its edges, degenerate ones
@@ -153,20 +160,18 @@ TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfS
   return result;
 }
 
-}  // namespace
-
-TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
-                          const Follow& follow, int& rebuilt) {
-  rebuilt = 0;
-  if (shape.IsNull()) return shape;
+// The shape with its flat faces whose parametrisation collapses (collapses,
+// `borders`) rebuilt on their plane, each checked alone; `replaced` gets
+// each (face, result) pair. Returns `shape` when none is.
+TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders,
+                          std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& replaced) {
   Handle(BRepTools_ReShape) reshape = new BRepTools_ReShape;
-  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
     const TopoDS_Face f = TopoDS::Face(ex.Current().Oriented(TopAbs_FORWARD));
     if (reshape->IsRecorded(f)) continue;
     try {
       const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
-      if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane || !collapses(f)) continue;
+      if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane || !collapses(f, borders)) continue;
       GeomLib_IsPlanarSurface planar(s, tol);
       if (!planar.IsPlanar()) continue;
       gp_Dir n;
@@ -182,19 +187,40 @@ TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_
     }
   }
   if (replaced.empty()) return shape;
-  TopoDS_Shape result;
   try {
-    result = reshape->Apply(shape);
+    const TopoDS_Shape result = reshape->Apply(shape);
+    if (!result.IsNull()) return result;
   } catch (const Standard_Failure&) {
-    return shape;
   }
-  if (result.IsNull() || !BRepCheck_Analyzer(result).IsValid() ||
+  replaced.clear();
+  return shape;
+}
+
+}  // namespace
+
+TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
+                          const Follow& follow, int& rebuilt) {
+  rebuilt = 0;
+  if (shape.IsNull()) return shape;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
+  const TopoDS_Shape result = rebuild_flat(shape, tol, false, replaced);
+  if (replaced.empty() || !BRepCheck_Analyzer(result).IsValid() ||
       (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
     return shape;
   TopTools_MapOfShape on_planes;
   for (const auto& [f, g] : replaced) follow(f, g), on_planes.Add(g);
   rebuilt = static_cast<int>(replaced.size());
   return merge_coplanar(result, source, on_planes, follow);
+}
+
+TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, const Follow& follow, int& rebuilt) {
+  rebuilt = 0;
+  if (shape.IsNull()) return shape;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
+  const TopoDS_Shape result = rebuild_flat(shape, tol, true, replaced);
+  for (const auto& [f, g] : replaced) follow(f, g);
+  rebuilt = static_cast<int>(replaced.size());
+  return result;
 }
 
 }  // namespace sizemesh

@@ -94,6 +94,7 @@ Sewn sew(const FaceList& faces, double tol) {
   s.sewing->Perform();
   s.shape = s.sewing->SewedShape();
   if (s.shape.IsNull()) s.shape = compound_of(faces);
+  else mend_sewn_edges(s.shape, tol);
   s.free_curves = count_free_curves(s.shape);
   return s;
 }
