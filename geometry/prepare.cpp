@@ -168,37 +168,115 @@ double volume_of(const TopoDS_Shape& solid) {
   return std::abs(g.Mass());
 }
 
-// Pairs of faces lying on each other: same area, centre and box within `tol`.
-std::vector<std::pair<int, int>> coincident_pairs(const FaceList& faces, double tol) {
-  struct Props {
-    double area;
-    gp_Pnt centre;
-    double box[6];
-  };
-  std::vector<Props> p(faces.size());
+// Faces lying on each other: pairs of single faces (same area, centre and
+// box within `tol`), then, on one plane, two groups of faces that cover the
+// same region (two halves' root caps, each cut in two along its own line).
+using FaceGroup = std::vector<int>;
+using Coincident = std::vector<std::pair<FaceGroup, FaceGroup>>;
+
+struct FaceProps {
+  double area = 0;
+  gp_Pnt centre;
+  Bnd_Box box;
+  bool planar = false;
+  gp_Dir normal;  // outward, by the face's orientation
+  double offset = 0;
+};
+
+// Beyond `tol`, the areas may differ by the share `rel_area`, the centres by
+// the share `rel_centre` of the square root of the area.
+bool same_spot(double area_a, const gp_Pnt& centre_a, const Bnd_Box& box_a, double area_b, const gp_Pnt& centre_b,
+               const Bnd_Box& box_b, double tol, double rel_area = 1e-6, double rel_centre = 0) {
+  const double a = std::max(area_a, area_b);
+  if (!(a > 0) || std::abs(area_a - area_b) > rel_area * a + tol * std::sqrt(a)) return false;
+  if (centre_a.Distance(centre_b) > tol + rel_centre * std::sqrt(a)) return false;
+  double pa[6], pb[6];
+  box_a.Get(pa[0], pa[1], pa[2], pa[3], pa[4], pa[5]);
+  box_b.Get(pb[0], pb[1], pb[2], pb[3], pb[4], pb[5]);
+  for (int k = 0; k < 6; ++k)
+    if (std::abs(pa[k] - pb[k]) > 2 * tol) return false;
+  return true;
+}
+
+Coincident coincident_pairs(const FaceList& faces, double tol) {
+  std::vector<FaceProps> p(faces.size());
   for (size_t i = 0; i < faces.size(); ++i) {
     GProp_GProps g;
     BRepGProp::SurfaceProperties(faces[i], g);
     p[i].area = std::abs(g.Mass());
     p[i].centre = g.CentreOfMass();
-    Bnd_Box b;
-    BRepBndLib::Add(faces[i], b, false);
-    if (b.IsVoid()) p[i].area = 0;
-    else b.Get(p[i].box[0], p[i].box[1], p[i].box[2], p[i].box[3], p[i].box[4], p[i].box[5]);
+    BRepBndLib::Add(faces[i], p[i].box, false);
+    if (p[i].box.IsVoid()) p[i].area = 0;
+    BRepAdaptor_Surface s(faces[i], false);
+    if (s.GetType() == GeomAbs_Plane) {
+      const gp_Pln pln = s.Plane();
+      p[i].planar = true;
+      p[i].normal = faces[i].Orientation() == TopAbs_REVERSED ? pln.Axis().Direction().Reversed()
+                                                             : pln.Axis().Direction();
+      p[i].offset = gp_Vec(pln.Location().XYZ()).Dot(gp_Vec(p[i].normal));
+    }
   }
-  std::vector<std::pair<int, int>> out;
+  Coincident out;
   std::vector<bool> used(faces.size(), false);
-  for (size_t i = 0; i < faces.size(); ++i) {
+  for (size_t i = 0; i < faces.size(); ++i)
     for (size_t j = i + 1; j < faces.size() && !used[i]; ++j) {
-      if (used[j] || !(p[i].area > 0)) continue;
-      const double a = std::max(p[i].area, p[j].area);
-      if (std::abs(p[i].area - p[j].area) > 1e-6 * a + tol * std::sqrt(a)) continue;
-      if (p[i].centre.Distance(p[j].centre) > tol) continue;
-      bool same_box = true;
-      for (int k = 0; k < 6 && same_box; ++k) same_box = std::abs(p[i].box[k] - p[j].box[k]) <= 2 * tol;
-      if (!same_box) continue;
-      out.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      if (used[j] || !same_spot(p[i].area, p[i].centre, p[i].box, p[j].area, p[j].centre, p[j].box, tol)) continue;
+      out.push_back({{static_cast<int>(i)}, {static_cast<int>(j)}});
       used[i] = used[j] = true;
+    }
+  // Groups: the planar faces left, in clusters on one plane whose boxes
+  // touch; a cluster split in two parts that cover the same region twice
+  // (the sewing may have turned both parts the same way, so their
+  // orientation does not tell them apart). Small clusters only: every split
+  // is tried.
+  constexpr size_t kMaxCluster = 12;
+  std::vector<FaceGroup> clusters;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (used[i] || !p[i].planar || !(p[i].area > 0)) continue;
+    FaceGroup* into = nullptr;
+    for (auto& c : clusters) {
+      const FaceProps& q = p[c.front()];
+      const double dot = q.normal.Dot(p[i].normal);
+      if (std::abs(dot) < 1 - 1e-9 || std::abs(q.offset - (dot > 0 ? 1 : -1) * p[i].offset) > tol) continue;
+      const bool touches = std::any_of(c.begin(), c.end(), [&](int j) {
+        Bnd_Box grown = p[j].box;
+        grown.Enlarge(tol);
+        return !grown.IsOut(p[i].box);
+      });
+      if (touches) {
+        into = &c;
+        break;
+      }
+    }
+    if (into) into->push_back(static_cast<int>(i));
+    else clusters.push_back({static_cast<int>(i)});
+  }
+  for (const FaceGroup& c : clusters) {
+    if (c.size() < 3 || c.size() > kMaxCluster) continue;
+    // Part one holds the cluster's first face; the rest of the faces by bit.
+    for (unsigned mask = 0; mask < (1u << (c.size() - 1)); ++mask) {
+      FaceGroup one{c.front()}, other;
+      for (size_t k = 1; k < c.size(); ++k) ((mask >> (k - 1)) & 1 ? one : other).push_back(c[k]);
+      if (other.empty()) continue;
+      auto sum = [&](const FaceGroup& g, double& area, gp_Pnt& centre, Bnd_Box& box) {
+        gp_XYZ moment;
+        area = 0;
+        for (int j : g) area += p[j].area, moment += p[j].area * p[j].centre.XYZ(), box.Add(p[j].box);
+        centre = gp_Pnt(moment / area);
+      };
+      double area_one, area_other;
+      gp_Pnt centre_one, centre_other;
+      Bnd_Box box_one, box_other;
+      sum(one, area_one, centre_one, box_one);
+      sum(other, area_other, centre_other, box_other);
+      // Each part a cap cut along its own line and approximated apart: their
+      // areas agree to a part in a thousand, their centres to a hundredth of
+      // their size, their boxes within `tol` (the repair sews the result
+      // before it keeps it).
+      if (same_spot(area_one, centre_one, box_one, area_other, centre_other, box_other, tol, 1e-3, 1e-2)) {
+        out.push_back({one, other});
+        break;
+      }
     }
   }
   return out;
@@ -332,25 +410,19 @@ FaceList joined(FaceList faces, const FaceList& more) {
   return faces;
 }
 
-// Coincident pairs of `faces` taken out of `current` (sewn as `now` at
+// Coincident faces or groups of `faces` taken out of `current` (sewn as `now` at
 // tolerance t): both (the caps between two halves of one body) when that
 // does not open the component further, else one of them (a duplicate).
 // Returns the faces taken out.
-int drop_coincident(const FaceList& faces, const std::vector<std::pair<int, int>>& pairs, double t,
-                    FaceList& current, Sewn& now) {
+int drop_coincident(const FaceList& faces, const Coincident& pairs, double t, FaceList& current, Sewn& now) {
   int dropped = 0;
-  for (const auto& [i, j] : pairs) {
-    auto without = [&](std::initializer_list<int> drop) {
-      FaceList out;
-      for (const auto& f : current) {
-        bool keep = true;
-        for (int d : drop) keep = keep && !f.IsSame(faces[d]);
-        if (keep) out.push_back(f);
-      }
-      return out;
-    };
-    for (auto drop : {std::initializer_list<int>{i, j}, std::initializer_list<int>{j}}) {
-      FaceList trial = without(drop);
+  for (const auto& [one, other] : pairs) {
+    FaceGroup both = one;
+    both.insert(both.end(), other.begin(), other.end());
+    for (const FaceGroup& drop : {both, other}) {
+      FaceList trial;
+      for (const auto& f : current)
+        if (std::none_of(drop.begin(), drop.end(), [&](int d) { return f.IsSame(faces[d]); })) trial.push_back(f);
       Sewn s = sew(trial, t);
       if (s.free_curves <= now.free_curves) {
         dropped += static_cast<int>(drop.size());
@@ -602,7 +674,11 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   for (size_t k = 0; k < parts.size(); ++k) {
     Component& c = info.components[k];
     const TopoDS_Shape& s = parts[k];
-    if (s.ShapeType() == TopAbs_SOLID) {
+    // A body closed with faces back to back inside it (two halves sewn
+    // together with both root caps) bounds no volume the fuse can use: it
+    // goes through the repair, which takes such pairs out.
+    const bool back_to_back = (s.ShapeType() == TopAbs_SOLID || c.closed) && !coincident_pairs(faces_of(s), tol).empty();
+    if (s.ShapeType() == TopAbs_SOLID && !back_to_back) {
       c.role = "solid";
       // A solid as read may be invalid (a face turned inside out in its
       // shell): the general fuse would then classify it wrongly and drop
@@ -627,7 +703,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       continue;
     }
     Repair r;
-    if (c.closed) {
+    if (c.closed && !back_to_back) {
       r.closed = s;
     } else if (s.ShapeType() == TopAbs_FACE && count_free_curves(s) == 0) {
       // One face closed on itself (a body of revolution with poles): its shell.
@@ -637,7 +713,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       b.Add(shell, s);
       shell.Closed(true);
       r.closed = shell;
-    } else if (s.ShapeType() == TopAbs_SHELL) {
+    } else if (s.ShapeType() == TopAbs_SHELL || back_to_back) {
       // Caps built into a skin (OpenVSP's root and tip caps, flat strips
       // folded onto the chord) split off as faces of their own, when that
       // finds caps back to back: two halves' root caps, a pod's tip cap and
@@ -678,7 +754,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     info.caps_added += r.caps;
     info.duplicate_faces_removed += r.duplicates;
     info.internal_faces_removed += r.internal;
-    if (!c.closed) ++info.components_repaired;
+    if (!c.closed || back_to_back) ++info.components_repaired;
     for (const auto& solid : closed) solids.push_back(solid), solid_component.push_back(static_cast<int>(k));
     for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
   }
