@@ -234,11 +234,11 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
   // thickness, even once mended (planar_faces.cpp, sewn_edges.cpp). When an
   // edge is that wide, the sewing is done again with the flat faces whose
   // parametrisation collapses on their plane, where each face's curve is a
-  // projection, and kept when it is tighter.
+  // projection, and kept when it is tighter (a sewing with a result: the
+  // first one's is empty only when it had no edge to widen).
   std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
   TopTools_DataMapOfShapeShape on_plane;
-  const bool sew = options.sew && info.free_curves_before_sewing > 0;
-  if (sew) {
+  if (options.sew && info.free_curves_before_sewing > 0) {
     auto sewn = [&](const TopoDS_Shape& in, int& mended, double& widest) {
       auto s = std::make_unique<BRepBuilderAPI_Sewing>(cad->tolerance);
       s->Add(in);
@@ -273,9 +273,6 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
     if (!sewing->SewedShape().IsNull()) {
       shape = solids_from_closed_shells(sewing->SewedShape());
       info.sewn = true;
-    } else {
-      on_plane.Clear();
-      info.flat_faces_before_sewing = 0;
     }
   }
   auto rebuilt = [&](const TopoDS_Shape& s) { return on_plane.IsBound(s) ? on_plane(s) : s; };
