@@ -257,8 +257,7 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
     if (widest > 100 * cad->tolerance) {
       int flat = 0, mended = 0;
       TopTools_DataMapOfShapeShape rebuilt_faces;
-      const TopoDS_Shape flattened = flat_faces_before_sewing(
-          shape, cad->tolerance, [&](const TopoDS_Face& f, const TopoDS_Face& g) { rebuilt_faces.Bind(f, g); }, flat);
+      const TopoDS_Shape flattened = flat_faces_before_sewing(shape, cad->tolerance, rebuilt_faces, flat);
       double widest_flat = 0;
       if (flat > 0) {
         auto on_planes = sewn(flattened, mended, widest_flat);

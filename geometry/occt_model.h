@@ -7,6 +7,7 @@
 #include <Geom_Surface.hxx>
 #include <TopTools_DataMapOfShapeInteger.hxx>
 #include <TopTools_DataMapOfShapeReal.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <functional>
 #include <TopoDS_Face.hxx>
@@ -171,15 +172,17 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
 TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
                           const Follow& follow, int& rebuilt);
 
-// geometry/sewn_edges.cpp: edges of a sewn `shape` whose tolerance grew
+// geometry/sewn_edges.cpp: edges between two planes of a sewn `shape` whose tolerance grew
 // past 100 times the sewing's `tol` get their curves on both faces projected
 // afresh from the edge's 3D curve, and tolerances made the least that holds
 // (the shape is changed in place). Returns how many became tighter.
 int mend_sewn_edges(const TopoDS_Shape& shape, double tol);
 
-// The same rebuild on faces not yet sewn, each face checked alone:
-// `follow(face, result)` for each, `rebuilt` counts them.
-TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, const Follow& follow, int& rebuilt);
+// The same rebuild on a copy of faces not yet sewn, each face checked alone;
+// `shape` is left as it is. `image` gets each face and solid of `shape` with
+// its counterpart in the result; `rebuilt` counts the faces put on a plane.
+TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, TopTools_DataMapOfShapeShape& image,
+                                      int& rebuilt);
 
 // geometry/flow_domain.cpp: the far field and the symmetry plane around the
 // prepared `body` (bounding box lo..hi, model tolerance `tol`). `source` is

@@ -9,6 +9,7 @@
 // a sizeable part of the wing (a general fuse then finds everything within
 // it in contact); and a Boolean cut at a coincident plane treats the cap as
 // a curved face. On the plane itself uv is length, and the same edges bound it.
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <BRepAdaptor_Curve.hxx>
@@ -31,6 +32,7 @@
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <TopTools_DataMapOfShapeInteger.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopTools_MapOfShape.hxx>
@@ -213,12 +215,27 @@ TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_
   return merge_coplanar(result, source, on_planes, follow);
 }
 
-TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, const Follow& follow, int& rebuilt) {
+TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, TopTools_DataMapOfShapeShape& image,
+                                      int& rebuilt) {
   rebuilt = 0;
   if (shape.IsNull()) return shape;
+  // On a copy: a face rebuilt on its plane shares its edges with its
+  // neighbours, and fitting them to the plane changes those edges, which the
+  // shape as read (kept when this sewing is not) must not see.
+  BRepBuilderAPI_Copy copy(shape, true, false);
+  const TopoDS_Shape copied = copy.Shape();
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
-  const TopoDS_Shape result = rebuild_flat(shape, tol, true, replaced);
-  for (const auto& [f, g] : replaced) follow(f, g);
+  const TopoDS_Shape result = rebuild_flat(copied, tol, true, replaced);
+  TopTools_DataMapOfShapeShape to_plane;
+  for (const auto& [f, g] : replaced) to_plane.Bind(f, g);
+  for (const TopAbs_ShapeEnum type : {TopAbs_FACE, TopAbs_SOLID})
+    for (TopExp_Explorer ex(shape, type); ex.More(); ex.Next()) {
+      const TopoDS_Shape& f = ex.Current();
+      if (image.IsBound(f)) continue;
+      const TopoDS_Shape c = copy.ModifiedShape(f);
+      const TopoDS_Shape forward = c.Oriented(TopAbs_FORWARD);
+      image.Bind(f, to_plane.IsBound(forward) ? to_plane(forward).Oriented(c.Orientation()) : c);
+    }
   rebuilt = static_cast<int>(replaced.size());
   return result;
 }

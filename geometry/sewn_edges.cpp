@@ -1,5 +1,5 @@
-// Sewn edges whose tolerance grew past the sewing's own rebuilt exactly
-// (mend_sewn_edges, geometry/occt_model.h).
+// Sewn edges between two planes whose tolerance grew past the sewing's own,
+// rebuilt exactly (mend_sewn_edges, geometry/occt_model.h).
 //
 // Sewing keeps one of two coincident edges' 3D curves and makes the other
 // face's curve in its parameters follow it by an approximate
@@ -8,18 +8,18 @@
 // that reparametrisation is far from linear, the approximation misses, and
 // the edge's tolerance becomes the largest miss: a sizeable part of the wing's
 // chord. A general fuse then finds everything within that tolerance in
-// contact. The curve on each face projected afresh from the kept 3D curve is
-// same-parameter by construction.
+// contact. On a plane, the curve on each face projected afresh from the kept
+// 3D curve is same-parameter by construction.
 #include <BRepLib.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <Geom2d_Curve.hxx>
 #include <ShapeBuild_Edge.hxx>
-#include <ShapeFix_Edge.hxx>
 #include <ShapeFix_ShapeTolerance.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
@@ -35,6 +35,10 @@ namespace sizemesh {
 
 int mend_sewn_edges(const TopoDS_Shape& shape, double tol) {
   if (shape.IsNull()) return 0;
+  bool wide = false;
+  for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More() && !wide; ex.Next())
+    wide = BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())) > 100 * tol;
+  if (!wide) return 0;
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
   TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
   BRep_Builder b;
@@ -43,9 +47,11 @@ int mend_sewn_edges(const TopoDS_Shape& shape, double tol) {
     const TopoDS_Edge e = TopoDS::Edge(edge_faces.FindKey(i));
     const double was = BRep_Tool::Tolerance(e);
     if (!(was > 100 * tol) || BRep_Tool::Degenerated(e) || edge_faces(i).Extent() != 2) continue;
-    bool seam = false;
-    for (const auto& f : edge_faces(i)) seam |= BRep_Tool::IsClosed(e, TopoDS::Face(f));
-    if (seam) continue;
+    // On planes only: a curve projected onto a B-spline that collapses near
+    // the edge's ends comes out worse for the mesher than the one sewn.
+    bool planes = true;
+    for (const auto& f : edge_faces(i)) planes = planes && BRepAdaptor_Surface(TopoDS::Face(f), false).GetType() == GeomAbs_Plane;
+    if (!planes) continue;
     // The curves as sewn, put back when no better ones come.
     struct Kept {
       TopoDS_Face face;
@@ -65,16 +71,11 @@ int mend_sewn_edges(const TopoDS_Shape& shape, double tol) {
     const ShapeFix_ShapeTolerance set;
     bool ok = true;
     try {
-      ShapeFix_Edge fix;
       for (const Kept& k : kept) {
         ShapeBuild_Edge().RemovePCurve(e, k.face);
-        if (BRepAdaptor_Surface(k.face, false).GetType() == GeomAbs_Plane) {
-          TopTools_ListOfShape one;
-          one.Append(e);
-          BRepLib::BuildPCurveForEdgesOnPlane(one, k.face);
-        } else {
-          fix.FixAddPCurve(e, k.face, false, tol);
-        }
+        TopTools_ListOfShape one;
+        one.Append(e);
+        BRepLib::BuildPCurveForEdgesOnPlane(one, k.face);
         double f0, f1;
         ok = ok && !BRep_Tool::CurveOnSurface(e, k.face, f0, f1).IsNull();
       }
