@@ -806,7 +806,7 @@ TEST_CASE("with a deviation bound the mesh stays that close to doubly curved, sa
   }
 }
 
-TEST_CASE("a pair of triangles on the same nodes facing apart is dropped; every other triangle stays") {
+TEST_CASE("a pair of triangles on the same nodes facing apart is dropped, and every other triangle stays") {
   // A closed tetrahedron with a fin on its edge 0-1: the fin's two sides are
   // one triangle each on nodes 0, 1, 4, facing apart (two faces back to back,
   // no thickness). Edge 0-1 is used four times until the pair goes.

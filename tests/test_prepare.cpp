@@ -236,7 +236,7 @@ TEST_CASE("OpenVSP's blunt-trailing-edge wing keeps both skins and loses its pla
   CHECK(z_hi > 0.15);
 }
 
-TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay; planes and caps inside go", "[models]") {
+TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay, and the planes and caps inside go", "[models]") {
   // Component 1 is a pod with a strut sewn at each side. Each half of the
   // pod is one skin whose root and tip caps are built in: flat strips folded
   // onto the chord, the root caps of the two halves back to back on y = 0,
@@ -272,24 +272,46 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   for (const Component& c : p.components) CHECK(c.role == "solid");
   // Every face taken out of any component lies inside one of the solids.
   CHECK(p.internal_faces_removed == 11);
-  // The aircraft is symmetric in y, so the faces kept on each side have the
-  // same area.
-  CHECK(model.num_faces() == 25);
+  // The aircraft is symmetric in y: the pod's two halves, the struts' and
+  // the wing's, tail's and fin's skins, each with its tip cap in two halves
+  // split at its leading edge, each jury strut split at its pinch, the fin's
+  // two sides and the fuselage.
+  CHECK(model.num_faces() == 27);
   // The area on each side, summed over a uv grid (the faces are untrimmed
   // patches; the fuselage is one face across both sides), what lies on
-  // y = 0 on neither side.
+  // y = 0 on neither side; and each face's centroid.
   double left = 0, right = 0, middle = 0;
+  std::map<int, std::pair<double, Vec3>> pieces;  // per face as read: area, moment
   constexpr int n = 64;
   for (int f = 1; f <= model.num_faces(); ++f) {
     const UVBox b = model.face_uv_bounds(f);
     const Vec2 step = (b.hi - b.lo) / n;
+    double area = 0;
+    Vec3 moment = Vec3::Zero();
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         const SurfaceD1 d = model.eval_face(f, b.lo + Vec2((i + 0.5) * step.x(), (j + 0.5) * step.y()));
         const double a = d.du.cross(d.dv).norm() * step.x() * step.y();
         (std::abs(d.p.y()) < 1e-6 ? middle : d.p.y() < 0 ? left : right) += a;
+        area += a, moment += a * d.p;
       }
+    auto& [a, m] = pieces.emplace(model.source_face(f), std::make_pair(0.0, Vec3(Vec3::Zero()))).first->second;
+    a += area, m += moment;
   }
+  // The pieces of each face as read, taken together, have a mirror twin
+  // (the jury struts' halves, split at a pinch chosen on each side alone,
+  // need not).
+  REQUIRE(pieces.size() == 12);
+  int twins = 0;
+  for (const auto& [face, am] : pieces) {
+    const double area = am.first;
+    const Vec3 c = am.second / area, mirror(c.x(), -c.y(), c.z());
+    twins += std::any_of(pieces.begin(), pieces.end(), [&](const auto& g) {
+      return std::abs(g.second.first - area) < 1e-3 * area &&
+             (g.second.second / g.second.first - mirror).norm() < 1e-3 * std::sqrt(area);
+    });
+  }
+  CHECK(twins == 12);
   CHECK(left == Approx(right).epsilon(0.01));
   CHECK(left + right + middle == Approx(total_area(model)).epsilon(0.01));
 }
