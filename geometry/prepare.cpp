@@ -15,10 +15,16 @@
 // within the union's time budget, and every result face records its source
 // face.
 #include "geometry/prepare.h"
+#include "geometry/stopwatch.h"
 
 #include <BOPAlgo_Alerts.hxx>
 #include <BOPAlgo_Builder.hxx>
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAlgoAPI_Section.hxx>
+#include <BRepClass_FaceClassifier.hxx>
 #include <BRepAdaptor_Surface.hxx>
+#include <GeomLib_IsPlanarSurface.hxx>
+#include <gp_Pln.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -166,6 +172,59 @@ double volume_of(const TopoDS_Shape& solid) {
   GProp_GProps g;
   BRepGProp::VolumeProperties(solid, g);
   return std::abs(g.Mass());
+}
+
+// An open component whose faces all lie on one plane: `plane` gets it.
+bool flat_sheet(const TopoDS_Shape& s, double tol, gp_Pln& plane) {
+  bool any = false;
+  for (const auto& f : faces_of(s)) {
+    const Handle(Geom_Surface) g = BRep_Tool::Surface(f);
+    if (g.IsNull()) return false;
+    GeomLib_IsPlanarSurface planar(g, tol);
+    if (!planar.IsPlanar()) return false;
+    const gp_Pln p = planar.Plan();
+    if (!any) plane = p, any = true;
+    else if (!plane.Axis().IsParallel(p.Axis(), 1e-6) || plane.Distance(p.Location()) > tol) return false;
+  }
+  return any;
+}
+
+// A flat sheet on `plane` that one of the `solids` passes through: the
+// solid's section by the plane lies within the sheet (a propeller's
+// actuator disk around its nacelle or spinner). It has fluid on both sides
+// and bounds no volume, so it is no wall of the wetted surface; imprinted
+// on the body it would leave boundary and non-manifold edges. A flat sheet
+// a body only touches or ends in (a plate fin on a fuselage) is a wall.
+bool pierced(const TopoDS_Shape& sheet, const gp_Pln& plane, const std::vector<TopoDS_Shape>& solids, double tol) {
+  Bnd_Box sheet_box;
+  BRepBndLib::Add(sheet, sheet_box);
+  const FaceList faces = faces_of(sheet);
+  for (const auto& solid : solids) {
+    Bnd_Box box;
+    BRepBndLib::Add(solid, box);
+    if (box.IsOut(sheet_box)) continue;
+    try {
+      BRepAlgoAPI_Section section(solid, plane, false);
+      section.Build();
+      if (!section.IsDone()) continue;
+      int points = 0;
+      bool inside = true;
+      for (TopExp_Explorer ex(section.Shape(), TopAbs_EDGE); ex.More() && inside; ex.Next()) {
+        const BRepAdaptor_Curve c(TopoDS::Edge(ex.Current()));
+        for (int i = 0; i <= 8 && inside; ++i, ++points) {
+          const gp_Pnt p = c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * i / 8);
+          inside = std::any_of(faces.begin(), faces.end(), [&](const TopoDS_Face& f) {
+            const TopAbs_State state = BRepClass_FaceClassifier(f, p, tol).State();
+            return state == TopAbs_IN || state == TopAbs_ON;
+          });
+        }
+      }
+      if (inside && points > 0) return true;
+    } catch (const Standard_Failure&) {
+      continue;
+    }
+  }
+  return false;
 }
 
 // Faces lying on each other: pairs of single faces (same area, centre and
@@ -668,9 +727,11 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   std::vector<int> solid_component, sheet_component;
   FaceList loose;
   std::vector<int> loose_component;
+  std::vector<std::pair<int, gp_Pln>> flat;  // components that are flat open sheets, their plane
   const Follow follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
     if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
   };
+  Stopwatch step;
   for (size_t k = 0; k < parts.size(); ++k) {
     Component& c = info.components[k];
     const TopoDS_Shape& s = parts[k];
@@ -744,6 +805,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     const std::vector<TopoDS_Shape> closed = r.closed.IsNull() ? std::vector<TopoDS_Shape>() : solids_of(r.closed);
     if (closed.empty()) {
       c.role = "sheet";
+      if (gp_Pln plane; flat_sheet(s, tol, plane)) flat.emplace_back(static_cast<int>(k), plane);
       sheets.push_back(s);
       sheet_component.push_back(static_cast<int>(k));
       continue;
@@ -758,6 +820,18 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     for (const auto& solid : closed) solids.push_back(solid), solid_component.push_back(static_cast<int>(k));
     for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
   }
+  // Flat sheets a body passes through (actuator disks) are left out.
+  std::vector<TopoDS_Shape> bodies = solids;
+  bodies.insert(bodies.end(), invalid.begin(), invalid.end());
+  for (const auto& [k, plane] : flat)
+    if (pierced(parts[k], plane, bodies, tol)) {
+      const auto at = std::find(sheet_component.begin(), sheet_component.end(), k) - sheet_component.begin();
+      sheets.erase(sheets.begin() + at);
+      sheet_component.erase(sheet_component.begin() + at);
+      info.components[k].role = "disk";
+      info.components[k].route = "left out: a flat open sheet a body passes through, no wall";
+      info.left_out.push_back(k + 1);
+    }
   // Faces taken out of one component may lie inside another one (the plane
   // of the left tail inside the right tail): those are internal too.
   const Solids inside(solids, tol);
@@ -765,6 +839,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     if (inside.hold(loose[i])) ++info.internal_faces_removed;
     else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);
   }
+  info.repair_seconds = step.lap();
 
   // Components the options send straight to the mesh-level union.
   std::vector<TopoDS_Shape> apart = invalid;
@@ -797,6 +872,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   } else if (solids.size() == 1) {
     info.components[solid_component[0]].route = "alone: the only closed component";
   }
+  info.union_seconds = step.lap();
   solids.insert(solids.end(), apart.begin(), apart.end());
   TopoDS_Shape result;
   if (!options.describe_only && !sheets.empty() && solids.size() + sheets.size() >= 2) {
@@ -816,6 +892,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     for (const auto& s : solids) b.Add(all, s);
     result = all;
   }
+  info.imprint_seconds = step.lap();
   std::sort(info.not_united.begin(), info.not_united.end());
   info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
   // --info stops here: the last splits serve the mesher, and a description
@@ -832,6 +909,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   // Flat faces on their plane: no region of zero area in their uv.
   out.shape = planar_faces(out.shape, tol, out.source, follow, info.faces_made_planar);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());
+  info.finish_seconds = step.lap();
   return out;
 }
 

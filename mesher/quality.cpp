@@ -249,6 +249,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
   tbb::parallel_sort(uses.begin(), uses.end());
   int edges = 0, conforming = 0;
   std::set<std::pair<int, int>> neighbours;  // faces sharing a mesh edge
+  std::set<int> open_faces;
   const double lo = 1.0 / std::sqrt(2.0), hi = std::sqrt(2.0);
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
@@ -260,6 +261,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     const int total = forward + backward;
     if (total == 1) ++q.boundary_edges;
     if (total > 2) ++q.nonmanifold_edges;
+    if (total != 2 && open_faces.size() < 20) open_faces.insert(m.tri_face[uses[i].second / 3]);
     if (total == 2 && forward != 1) ++q.orientation_conflicts;  // a manifold edge used twice one way
     for (size_t u = i + 1; u < j; ++u) {  // faces meeting at this edge share a curve
       const int fa = m.tri_face[uses[i].second / 3], fb = m.tri_face[uses[u].second / 3];
@@ -271,6 +273,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     if (r >= lo && r <= hi) ++conforming;
     i = j;
   }
+  q.open_faces.assign(open_faces.begin(), open_faces.end());
   q.size_conformity = edges > 0 ? double(conforming) / edges : 0;
   count_self_intersections(m, neighbours, q);
   return q;

@@ -49,6 +49,7 @@ struct MeshQuality {
   int avoidable_below_12 = 0;             // below_12 - forced_below_12
   double worst_angle = 180;
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;
+  std::vector<int> open_faces;            // faces at boundary or non-manifold edges (first 20, ascending)
   int inverted = 0, zero_area = 0;
   long long self_intersections = 0;       // pairs of triangles meeting beyond shared nodes
   long long local_self_intersections = 0; // of those, in one face or faces sharing a curve

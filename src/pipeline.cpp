@@ -75,6 +75,20 @@ void warn_crossings(const MeshQuality& q, const Preparation& p, const WarningSin
   warn(msg.str());
 }
 
+// Boundary or non-manifold edges where one closed surface was asked for,
+// every face meshed and every component united (exit 3).
+void warn_open(const MeshQuality& q, const Preparation& p, bool faces_failed, const WarningSink& warn) {
+  if (q.boundary_edges + q.nonmanifold_edges == 0 || !closed_expected(p) || !p.not_united.empty() || faces_failed ||
+      q.self_intersections > q.local_self_intersections)
+    return;
+  std::ostringstream msg;
+  msg << "the united surface is not closed: " << q.boundary_edges << " boundary and " << q.nonmanifold_edges
+      << " non-manifold edges (faces";
+  for (int f : q.open_faces) msg << " " << f;
+  msg << ") (exit 3)";
+  warn(msg.str());
+}
+
 // Shares of the triangles and of the area whose target size is within 5% of h_min.
 void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r) {
   double n = 0, area = 0, total = 0;
@@ -182,6 +196,14 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
     warn(std::string("a half model, open on the plane ") + static_cast<char>('x' + a) +
          " = 0: its mesh has boundary edges there; --symmetry " + static_cast<char>('x' + a) +
          " with a far field closes it");
+  if (const auto& out = info.preparation.left_out; !out.empty()) {
+    std::ostringstream msg;
+    msg << (out.size() == 1 ? "component" : "components");
+    for (size_t i = 0; i < out.size(); ++i) msg << (i ? ", " : " ") << out[i];
+    msg << (out.size() == 1 ? " is a flat open sheet" : " are flat open sheets")
+        << " a body passes through (actuator disks): no wall, left out of the wetted surface";
+    warn(msg.str());
+  }
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/
@@ -244,6 +266,7 @@ void mesh_model(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
   warn_local_intersections(r.report.quality, warn);
   warn_crossings(r.report.quality, model.info().preparation, warn);
+  warn_open(r.report.quality, model.info().preparation, !r.mesh.failures.empty(), warn);
   warn_h_min(r.report, r.sizes.h_min, warn);
 }
 

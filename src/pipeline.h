@@ -1,6 +1,7 @@
 // The paper's flow from CAD file to mesh, one named step after another.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -49,6 +50,14 @@ std::unique_ptr<Watchdog> preparation_hard_stop(const CadFile& cad, const RunOpt
 // Exit codes of the sizemesh command.
 enum ExitCode { kOk = 0, kError = 1, kUsage = 2, kPartial = 3 };
 
+// The union was asked for and the model has a closed body, not half a
+// model: the mesh must be one closed surface. Open sheets imprinted on the
+// bodies leave it open; alone, or as half a model, they are what the model is.
+inline bool closed_expected(const Preparation& p) {
+  if (!p.union_requested || p.union_skipped || p.half_model_axis >= 0) return false;
+  return std::any_of(p.components.begin(), p.components.end(), [](const Component& c) { return c.role == "solid"; });
+}
+
 // Everything one run makes, kept in one place: the report points into it.
 struct RunResult {
   explicit RunResult(bool verbose) : clock(verbose, report.seconds) {}
@@ -67,11 +76,13 @@ struct RunResult {
   MeshLabels labels() const { return label_faces(*model); }
   // Partial: a face not meshed, components left out of the union (their
   // meshes overlap the rest: not one closed surface), or, where one surface
-  // was asked for, triangles that cross.
+  // was asked for, triangles that cross, or a surface not closed.
   int exit_code() const {
     const bool apart = model && !model->info().preparation.not_united.empty();
     const bool crossing = model && model->info().preparation.union_requested && report.quality.self_intersections > 0;
-    return mesh.failures.empty() && !apart && !crossing ? kOk : kPartial;
+    const bool open = model && closed_expected(model->info().preparation) &&
+                      report.quality.boundary_edges + report.quality.nonmanifold_edges > 0;
+    return mesh.failures.empty() && !apart && !crossing && !open ? kOk : kPartial;
   }
 };
 

@@ -37,6 +37,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"solids_fused", prep.solids_fused},
                       {"fallback", prep.fallback},
                       {"not_united", prep.not_united},
+                      {"left_out", prep.left_out},
                       {"united_at_mesh_level", prep.united_at_mesh_level},
                       {"caps_added", prep.caps_added},
                       {"half_model_axis", prep.half_model_axis},
@@ -48,7 +49,12 @@ nlohmann::json report_json(const RunReport& r) {
                       {"faces_split_at_folds", prep.faces_split_at_folds},
                       {"faces_made_planar", prep.faces_made_planar},
                       {"faces_before", prep.faces_before},
-                      {"faces_after", prep.faces_after}};
+                      {"faces_after", prep.faces_after},
+                      {"seconds",
+                       {{"repair", prep.repair_seconds},
+                        {"union", prep.union_seconds},
+                        {"imprint", prep.imprint_seconds},
+                        {"finish", prep.finish_seconds}}}};
   const FlowDomain& d = info.domain;
   j["domain"] = {{"farfield", d.farfield},
                  {"farfield_size", d.size},
@@ -101,6 +107,7 @@ nlohmann::json report_json(const RunReport& r) {
                  {"area_share_at_h_min", r.at_h_min_area_share},
                  {"boundary_edges", q.boundary_edges},
                  {"nonmanifold_edges", q.nonmanifold_edges},
+                 {"open_faces", q.open_faces},
                  {"orientation_conflicts", q.orientation_conflicts},
                  {"inverted_triangles", q.inverted},
                  {"zero_area_triangles", q.zero_area},

@@ -1,7 +1,17 @@
 // The preparation on aircraft exports: IGES files laid out past column 64,
 // a union that names what it could not unite instead of meshing overlapping
 // components silently, and a run that ends when OpenCASCADE does not.
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <catch2/catch.hpp>
+#include <gp_Circ.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Pln.hxx>
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/info.h>
@@ -37,6 +47,16 @@ std::string line(const std::string& data, char section, int seq) {
   char tail[16];
   std::snprintf(tail, sizeof tail, "%c%7d", section, seq);
   return data + std::string(72 - data.size(), ' ') + tail;
+}
+
+// The shapes in one compound, written as a .brep file at `path`.
+std::string write_shapes(const std::vector<TopoDS_Shape>& shapes, const std::string& path) {
+  BRep_Builder b;
+  TopoDS_Compound c;
+  b.MakeCompound(c);
+  for (const auto& s : shapes) b.Add(c, s);
+  REQUIRE(BRepTools::Write(c, path.c_str()));
+  return path;
 }
 
 // The report's mesh: one closed, consistently oriented surface with nothing
@@ -220,25 +240,27 @@ TEST_CASE("a general fuse that does not stop is ended at the union's budget and 
   CHECK(info.out.find("union:       not run: --info describes the file") != std::string::npos);
 }
 
-TEST_CASE("Pegasus's propeller disks are imprinted on its bodies within the budget when the bodies stay apart", "[models]") {
-  // Five open disks (one per propeller) cross the nacelles. With every solid
-  // left apart for the union of meshes, the disks are imprinted on the bodies
-  // as one argument of the fuse, so the bodies are not fused with each other
-  // again; the pieces of disk inside a body are found by the classifier only
-  // for bodies whose box holds the piece. The disks' routes say so, and the
-  // preparation keeps to its budget. One of Pegasus's bodies (the ventral
-  // fin) stays apart, so the run names it (exit 3).
+TEST_CASE("Pegasus's propeller disks are left out of its wetted surface and its bodies united at mesh level", "[models]") {
+  // Five flat open disks (one per propeller) cross the nacelles: actuator
+  // disks, with fluid on both sides, no walls. They are left out, named in
+  // one warning line. With every solid left apart for the union of meshes,
+  // the bodies are united as meshes, and one (the ventral fin) stays apart,
+  // so the run names it (exit 3).
   const test::TempDir dir("union_disks");
-  const auto j = test::run_with_report(
-      test::model_path("pegasus_openvsp.stp") + " -q --mesh-union all -o " + (dir / "p.vtu"), dir / "r.json", 3);
+  const std::string args = test::model_path("pegasus_openvsp.stp") + " -q --mesh-union all -o " + (dir / "p.vtu");
+  const auto j = test::run_with_report(args, dir / "r.json", 3);
   const auto& prep = j["preparation"];
-  int disks = 0;
-  for (const auto& c : prep["components"]) {
-    if (c["role"] != "sheet") continue;
-    ++disks;
-    CHECK(c["route"] == "imprinted");
+  std::vector<int> disks;
+  for (size_t k = 0; k < prep["components"].size(); ++k) {
+    const auto& c = prep["components"][k];
+    CHECK(c["role"] != "sheet");
+    if (c["role"] != "disk") continue;
+    disks.push_back(static_cast<int>(k) + 1);
+    CHECK(c["route"] == "left out: a flat open sheet a body passes through, no wall");
+    CHECK(c["closed"] == false);
   }
-  CHECK(disks == 5);
+  CHECK(disks == std::vector<int>{17, 18, 19, 20, 21});
+  CHECK(prep["left_out"].get<std::vector<int>>() == disks);
   CHECK(prep["fallback"] == "");
   // Its flat root and tip caps, B-splines ruled between two curves that meet
   // at both ends, are planes before they are sewn and meshed: no triangles
@@ -250,6 +272,57 @@ TEST_CASE("Pegasus's propeller disks are imprinted on its bodies within the budg
   for (const auto& c : prep["components"]) united += c["route"] == "mesh-level union";
   CHECK(united >= 15);
   CHECK(j["seconds"]["prepare"].get<double>() < prep["union_seconds"].get<double>());
+  const auto r = test::run_sizemesh(args);
+  CHECK(r.err.find("components 17, 18, 19, 20, 21 are flat open sheets a body passes through (actuator disks): "
+                   "no wall, left out of the wetted surface") != std::string::npos);
+}
+
+TEST_CASE("a flat disk through a body is left out: the box alone, closed, exit 0") {
+  // A box 2 x 1 x 1 and a disk across its middle, reaching out of it on
+  // every side, as a propeller's disk crosses its nacelle.
+  const test::TempDir dir("flat_disk");
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(2, 1, 1).Shape();
+  const TopoDS_Shape disk =
+      BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(1, 0.5, 0.5), gp_Dir(1, 0, 0)),
+                              BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(
+                                  gp_Circ(gp_Ax2(gp_Pnt(1, 0.5, 0.5), gp_Dir(1, 0, 0)), 1.2))).Wire())
+          .Face();
+  const std::string path = write_shapes({box, disk}, dir / "disk.brep");
+  const auto j = test::run_with_report(path + " -q --h-max 0.2 -o " + (dir / "d.vtu"), dir / "r.json", 0);
+  const auto& prep = j["preparation"];
+  REQUIRE(prep["components"].size() == 2);
+  CHECK(prep["left_out"].size() == 1);
+  for (const auto& c : prep["components"]) CHECK((c["role"] == "solid" || c["role"] == "disk"));
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh"]["area"].get<double>() == Approx(10.0).epsilon(1e-9));
+}
+
+TEST_CASE("an open tube standing in a body is imprinted, and the run says the surface is not closed (exit 3)") {
+  // The box and a tube open at both ends standing through its top face: an
+  // open sheet that is no disk, kept. Its rim above leaves boundary edges,
+  // and the loop where it meets the top face (split there) non-manifold ones.
+  const test::TempDir dir("open_tube");
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(2, 1, 1).Shape();
+  const TopoDS_Shape tube =
+      BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(gp_Pnt(1, 0.5, 0.5), gp_Dir(0, 0, 1)), 0.3), 0, 2 * M_PI, 0, 1.5)
+          .Face();
+  const std::string path = write_shapes({box, tube}, dir / "tube.brep");
+  const std::string args = path + " -q --h-max 0.2 -o " + (dir / "s.vtu");
+  const auto j = test::run_with_report(args, dir / "r.json", 3);
+  const auto& prep = j["preparation"];
+  REQUIRE(prep["components"].size() == 2);
+  CHECK(prep["left_out"].empty());
+  int sheets = 0;
+  for (const auto& c : prep["components"]) sheets += c["role"] == "sheet" && c["route"] == "imprinted";
+  CHECK(sheets == 1);
+  CHECK(j["mesh"]["boundary_edges"].get<int>() > 0);
+  CHECK(j["mesh"]["nonmanifold_edges"].get<int>() > 0);
+  CHECK(j["mesh"]["failed_faces"].empty());
+  const auto r = test::run_sizemesh(args);
+  INFO(r.err);
+  CHECK(r.status == 3);
+  CHECK(r.err_lines() == 1);
+  CHECK(r.err.find("the united surface is not closed: ") != std::string::npos);
 }
 
 TEST_CASE("the truss-braced wing united at mesh level is one closed surface: caps apart, back-to-back strips dropped", "[models]") {
