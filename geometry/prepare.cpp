@@ -174,8 +174,11 @@ double volume_of(const TopoDS_Shape& solid) {
   return std::abs(g.Mass());
 }
 
-// An open component whose faces all lie on one plane: `plane` gets it.
-bool flat_sheet(const TopoDS_Shape& s, double tol, gp_Pln& plane) {
+// An open component whose faces all lie on one plane (`plane` gets it) and
+// whose outer rim is a circle: the free curves' points beyond half the
+// largest distance from the centroid all lie within 5% of it (an annulus's
+// inner rim is not the rim). A propeller's or rotor's disk.
+bool flat_disk(const TopoDS_Shape& s, double tol, gp_Pln& plane) {
   bool any = false;
   for (const auto& f : faces_of(s)) {
     const Handle(Geom_Surface) g = BRep_Tool::Surface(f);
@@ -186,11 +189,27 @@ bool flat_sheet(const TopoDS_Shape& s, double tol, gp_Pln& plane) {
     if (!any) plane = p, any = true;
     else if (!plane.Axis().IsParallel(p.Axis(), 1e-6) || plane.Distance(p.Location()) > tol) return false;
   }
-  return any;
+  if (!any) return false;
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(s, props);
+  const gp_Pnt centre = props.CentreOfMass();
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(s, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  std::vector<double> r;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopoDS_Edge e = TopoDS::Edge(edge_faces.FindKey(i));
+    if (edge_faces(i).Extent() != 1 || BRep_Tool::Degenerated(e)) continue;
+    const BRepAdaptor_Curve c(e);
+    for (int k = 0; k <= 8; ++k)
+      r.push_back(centre.Distance(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * k / 8)));
+  }
+  if (r.empty()) return false;
+  const double most = *std::max_element(r.begin(), r.end());
+  return std::all_of(r.begin(), r.end(), [&](double d) { return d < 0.5 * most || d > 0.95 * most; });
 }
 
-// A flat sheet on `plane` that one of the `solids` passes through: the
-// solid's section by the plane lies within the sheet (a propeller's
+// A flat disk on `plane` that one of the `solids` passes through: the
+// solid's section by the plane lies within the disk (a propeller's
 // actuator disk around its nacelle or spinner). It has fluid on both sides
 // and bounds no volume, so it is no wall of the wetted surface; imprinted
 // on the body it would leave boundary and non-manifold edges. A flat sheet
@@ -727,7 +746,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   std::vector<int> solid_component, sheet_component;
   FaceList loose;
   std::vector<int> loose_component;
-  std::vector<std::pair<int, gp_Pln>> flat;  // components that are flat open sheets, their plane
+  std::vector<std::pair<int, gp_Pln>> flat;  // components that are flat open disks, their plane
   const Follow follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) {
     if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
   };
@@ -805,7 +824,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     const std::vector<TopoDS_Shape> closed = r.closed.IsNull() ? std::vector<TopoDS_Shape>() : solids_of(r.closed);
     if (closed.empty()) {
       c.role = "sheet";
-      if (gp_Pln plane; flat_sheet(s, tol, plane)) flat.emplace_back(static_cast<int>(k), plane);
+      if (gp_Pln plane; flat_disk(s, tol, plane)) flat.emplace_back(static_cast<int>(k), plane);
       sheets.push_back(s);
       sheet_component.push_back(static_cast<int>(k));
       continue;
@@ -820,7 +839,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     for (const auto& solid : closed) solids.push_back(solid), solid_component.push_back(static_cast<int>(k));
     for (const auto& f : r.sheets) loose.push_back(f), loose_component.push_back(static_cast<int>(k));
   }
-  // Flat sheets a body passes through (actuator disks) are left out.
+  // Flat disks a body passes through (actuator disks) are left out.
   std::vector<TopoDS_Shape> bodies = solids;
   bodies.insert(bodies.end(), invalid.begin(), invalid.end());
   for (const auto& [k, plane] : flat)
@@ -829,7 +848,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       sheets.erase(sheets.begin() + at);
       sheet_component.erase(sheet_component.begin() + at);
       info.components[k].role = "disk";
-      info.components[k].route = "left out: a flat open sheet a body passes through, no wall";
+      info.components[k].route = "left out: a flat disk a body passes through, no wall";
       info.left_out.push_back(k + 1);
     }
   // Faces taken out of one component may lie inside another one (the plane

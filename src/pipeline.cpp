@@ -200,7 +200,7 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
     std::ostringstream msg;
     msg << (out.size() == 1 ? "component" : "components");
     for (size_t i = 0; i < out.size(); ++i) msg << (i ? ", " : " ") << out[i];
-    msg << (out.size() == 1 ? " is a flat open sheet" : " are flat open sheets")
+    msg << (out.size() == 1 ? " is a flat open disk" : " are flat open disks")
         << " a body passes through (actuator disks): no wall, left out of the wetted surface";
     warn(msg.str());
   }

@@ -256,7 +256,7 @@ TEST_CASE("Pegasus's propeller disks are left out of its wetted surface and its 
     CHECK(c["role"] != "sheet");
     if (c["role"] != "disk") continue;
     disks.push_back(static_cast<int>(k) + 1);
-    CHECK(c["route"] == "left out: a flat open sheet a body passes through, no wall");
+    CHECK(c["route"] == "left out: a flat disk a body passes through, no wall");
     CHECK(c["closed"] == false);
   }
   CHECK(disks == std::vector<int>{17, 18, 19, 20, 21});
@@ -273,7 +273,7 @@ TEST_CASE("Pegasus's propeller disks are left out of its wetted surface and its 
   CHECK(united >= 15);
   CHECK(j["seconds"]["prepare"].get<double>() < prep["union_seconds"].get<double>());
   const auto r = test::run_sizemesh(args);
-  CHECK(r.err.find("components 17, 18, 19, 20, 21 are flat open sheets a body passes through (actuator disks): "
+  CHECK(r.err.find("components 17, 18, 19, 20, 21 are flat open disks a body passes through (actuator disks): "
                    "no wall, left out of the wetted surface") != std::string::npos);
 }
 
