@@ -22,20 +22,14 @@
 #include <set>
 
 #include "src/pipeline.h"
+#include "tests/brep_file.h"
 #include "tests/temp_dir.h"
 
 using namespace sizemesh;
 
 namespace {
 
-std::string write_compound(const std::vector<TopoDS_Shape>& solids, const std::string& path) {
-  BRep_Builder b;
-  TopoDS_Compound c;
-  b.MakeCompound(c);
-  for (const auto& s : solids) b.Add(c, s);
-  REQUIRE(BRepTools::Write(c, path.c_str()));
-  return path;
-}
+using test::write_compound;
 
 std::unique_ptr<RunResult> mesh_file(const std::string& path, const LoadOptions& load, double h_max = 0) {
   RunOptions o;

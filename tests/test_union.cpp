@@ -5,9 +5,6 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
-#include <TopoDS_Compound.hxx>
 #include <catch2/catch.hpp>
 #include <gp_Circ.hxx>
 #include <gp_Cylinder.hxx>
@@ -28,6 +25,7 @@
 #include "geometry/child_process.h"
 #include "geometry/iges_layout.h"
 #include "geometry/model.h"
+#include "tests/brep_file.h"
 #include "tests/cli_runner.h"
 #include "tests/temp_dir.h"
 #include "tests/test_models.h"
@@ -47,16 +45,6 @@ std::string line(const std::string& data, char section, int seq) {
   char tail[16];
   std::snprintf(tail, sizeof tail, "%c%7d", section, seq);
   return data + std::string(72 - data.size(), ' ') + tail;
-}
-
-// The shapes in one compound, written as a .brep file at `path`.
-std::string write_shapes(const std::vector<TopoDS_Shape>& shapes, const std::string& path) {
-  BRep_Builder b;
-  TopoDS_Compound c;
-  b.MakeCompound(c);
-  for (const auto& s : shapes) b.Add(c, s);
-  REQUIRE(BRepTools::Write(c, path.c_str()));
-  return path;
 }
 
 // The report's mesh: one closed, consistently oriented surface with nothing
@@ -287,7 +275,7 @@ TEST_CASE("a flat disk through a body is left out: the box alone, closed, exit 0
                               BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(
                                   gp_Circ(gp_Ax2(gp_Pnt(1, 0.5, 0.5), gp_Dir(1, 0, 0)), 1.2))).Wire())
           .Face();
-  const std::string path = write_shapes({box, disk}, dir / "disk.brep");
+  const std::string path = test::write_compound({box, disk}, dir / "disk.brep");
   const auto j = test::run_with_report(path + " -q --h-max 0.2 -o " + (dir / "d.vtu"), dir / "r.json", 0);
   const auto& prep = j["preparation"];
   REQUIRE(prep["components"].size() == 2);
@@ -306,7 +294,7 @@ TEST_CASE("an open tube standing in a body is imprinted, and the run says the su
   const TopoDS_Shape tube =
       BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(gp_Pnt(1, 0.5, 0.5), gp_Dir(0, 0, 1)), 0.3), 0, 2 * M_PI, 0, 1.5)
           .Face();
-  const std::string path = write_shapes({box, tube}, dir / "tube.brep");
+  const std::string path = test::write_compound({box, tube}, dir / "tube.brep");
   const std::string args = path + " -q --h-max 0.2 -o " + (dir / "s.vtu");
   const auto j = test::run_with_report(args, dir / "r.json", 3);
   const auto& prep = j["preparation"];
