@@ -163,6 +163,16 @@ TopoDS_Shape split_folds(const TopoDS_Shape& shape, double band,
                          const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow, int& split,
                          bool loose = false);
 
+// geometry/strip_faces.cpp: faces of `shape` that are strips between two
+// long curves narrower than `width` everywhere removed, their two long curves
+// made one shared by the faces either side; `follow(face, result)` for each
+// face beside a strip, `collapsed` counts the strips. Returns `shape` itself
+// when there is none, or when a face beside one would be invalid or a curve
+// left free.
+TopoDS_Shape collapse_strips(const TopoDS_Shape& shape, double width,
+                             const std::function<void(const TopoDS_Face&, const TopoDS_Face&)>& follow,
+                             int& collapsed);
+
 // geometry/planar_faces.cpp: faces of `shape` whose surface (a B-spline or
 // other) lies on a plane within `tol` rebuilt on that plane with the same
 // edges, and neighbouring ones cut from one face (`source`) on one plane

@@ -924,6 +924,9 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   // Folds narrower than half the default smallest element become curves.
   int folds = 0;
   out.shape = split_folds(result, kFoldBand * diagonal, follow, folds);
+  // Strips too narrow for sewing to keep their corners (some split off at a
+  // fold just now) become curves.
+  out.shape = collapse_strips(out.shape, 2 * tol, follow, info.strip_faces_collapsed);
   info.faces_split_at_folds += folds;
   // Flat faces on their plane: no region of zero area in their uv.
   out.shape = planar_faces(out.shape, tol, out.source, follow, info.faces_made_planar);

@@ -57,6 +57,7 @@ struct Preparation {
   int united_at_mesh_level = 0;       // components the B-rep union left out, united as meshes
   double seconds_budget = 0;          // the union's time budget
   int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element
+  int strip_faces_collapsed = 0;      // faces narrower than twice the sewing tolerance made one curve
   int faces_made_planar = 0;          // faces whose flat B-spline (or other) surface became a plane
   int faces_before = 0, faces_after = 0;
   // Wall time of each step: repair of the components (with their checks),

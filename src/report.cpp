@@ -48,6 +48,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"components_repaired", prep.components_repaired},
                       {"faces_split_at_folds", prep.faces_split_at_folds},
                       {"faces_made_planar", prep.faces_made_planar},
+                      {"strip_faces_collapsed", prep.strip_faces_collapsed},
                       {"faces_before", prep.faces_before},
                       {"faces_after", prep.faces_after},
                       {"seconds",

@@ -11,6 +11,10 @@
 #include <TColgp_Array2OfPnt.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopExp.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRep_Builder.hxx>
 #include <TopoDS_Compound.hxx>
@@ -467,6 +471,38 @@ TEST_CASE("a closed solid passes through the preparation unchanged") {
   CHECK(p.fallback.empty());
   CHECK(model.num_faces() == 3);
   for (int f = 1; f <= 3; ++f) CHECK(model.source_face(f) == f);
+}
+
+TEST_CASE("a strip narrower than the width given becomes one curve shared by the faces either side") {
+  // A tapered plate, 1 deep, chord 1 from a leading edge 0.1 thick to a blunt
+  // trailing edge 1e-4 thick: the trailing edge is a strip 1 x 1e-4.
+  const double te = 1e-4;
+  const gp_Pnt a(0, 0.05, 0), b(1, te / 2, 0), c(1, -te / 2, 0), d(0, -0.05, 0);
+  const TopoDS_Shape profile = BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakePolygon(a, b, c, d, true).Wire()).Face();
+  const TopoDS_Shape plate = BRepPrimAPI_MakePrism(profile, gp_Vec(0, 0, 1)).Shape();
+  REQUIRE(count_free_curves(plate) == 0);
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
+  auto follow = [&](const TopoDS_Face& from, const TopoDS_Face& to) { replaced.emplace_back(from, to); };
+  int collapsed = 0;
+  // Wider strips than the width stay.
+  CHECK(collapse_strips(plate, te / 2, follow, collapsed).IsSame(plate));
+  CHECK(collapsed == 0);
+  const TopoDS_Shape thin = collapse_strips(plate, 2 * te, follow, collapsed);
+  CHECK(collapsed == 1);
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(thin, TopAbs_FACE, faces);
+  CHECK(faces.Extent() == 5);
+  CHECK(count_free_curves(thin) == 0);
+  CHECK(BRepCheck_Analyzer(thin).IsValid());
+  // The two skins, the two end caps: the faces beside the strip, rebuilt.
+  CHECK(replaced.size() == 4);
+  // One closed surface meshes, its area the plate's less the strip's.
+  const Model model = model_from_shape(thin);
+  const SurfaceMesh m = mesh_closed(model, 0.05);
+  double area = 0;
+  for (const auto& t : m.tris) area += 0.5 * (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]).norm();
+  const double skin = std::hypot(1.0, 0.05 - te / 2), cap = 0.5 * (0.1 + te);
+  CHECK(area == Approx(2 * skin + 2 * cap + 0.1).epsilon(1e-3));
 }
 
 TEST_CASE("the shared OpenVSP aircraft close into one surface", "[models]") {
