@@ -851,9 +851,27 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       info.components[k].route = "left out: a flat disk a body passes through, no wall";
       info.left_out.push_back(k + 1);
     }
+  // A sheet whose every face lies inside a body or on its surface (a wing's
+  // planform plane exported as a component of its own, between the skins)
+  // bounds no fluid: it is left out.
+  const Solids inside(solids, tol);
+  for (size_t i = 0; i < sheets.size();) {
+    const FaceList faces = faces_of(sheets[i]);
+    const bool held = !solids.empty() && !faces.empty() &&
+                      std::all_of(faces.begin(), faces.end(), [&](const TopoDS_Face& f) { return inside.hold(f); });
+    if (!held) {
+      ++i;
+      continue;
+    }
+    const int k = sheet_component[i];
+    sheets.erase(sheets.begin() + static_cast<long>(i));
+    sheet_component.erase(sheet_component.begin() + static_cast<long>(i));
+    info.components[k].role = "internal";
+    info.components[k].route = "left out: a sheet inside a body";
+    info.internal_sheets.push_back(k + 1);
+  }
   // Faces taken out of one component may lie inside another one (the plane
   // of the left tail inside the right tail): those are internal too.
-  const Solids inside(solids, tol);
   for (size_t i = 0; i < loose.size(); ++i) {
     if (inside.hold(loose[i])) ++info.internal_faces_removed;
     else sheets.push_back(loose[i]), sheet_component.push_back(loose_component[i]);

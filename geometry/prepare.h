@@ -54,6 +54,7 @@ struct Preparation {
   std::string fallback;               // why the union was not kept; empty when it was or was not needed
   std::vector<int> not_united;        // components (1-based) left where they lie: the surface is not one
   std::vector<int> left_out;          // flat open disks a body passes through (actuator disks): no wall, not meshed
+  std::vector<int> internal_sheets;   // open components lying inside a body or on its surface: not meshed
   int united_at_mesh_level = 0;       // components the B-rep union left out, united as meshes
   double seconds_budget = 0;          // the union's time budget
   int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element

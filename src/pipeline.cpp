@@ -204,6 +204,14 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
         << " a body passes through (actuator disks): no wall, left out of the wetted surface";
     warn(msg.str());
   }
+  if (const auto& in = info.preparation.internal_sheets; !in.empty()) {
+    std::ostringstream msg;
+    msg << (in.size() == 1 ? "component" : "components");
+    for (size_t i = 0; i < in.size(); ++i) msg << (i ? ", " : " ") << in[i];
+    msg << (in.size() == 1 ? " is an open sheet" : " are open sheets")
+        << " inside a body (an internal plane): no wall, left out of the wetted surface";
+    warn(msg.str());
+  }
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/

@@ -38,6 +38,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"fallback", prep.fallback},
                       {"not_united", prep.not_united},
                       {"left_out", prep.left_out},
+                      {"internal_sheets", prep.internal_sheets},
                       {"united_at_mesh_level", prep.united_at_mesh_level},
                       {"caps_added", prep.caps_added},
                       {"half_model_axis", prep.half_model_axis},

@@ -270,6 +270,29 @@ TEST_CASE("Pegasus's propeller disks are left out of its wetted surface and its 
                    "no wall, left out of the wetted surface") != std::string::npos);
 }
 
+TEST_CASE("an open sheet inside a body is left out: the box alone, closed, exit 0") {
+  // A box 2 x 1 x 1 with a plane across its inside at mid-height, reaching
+  // its four side walls, as a wing's planform plane lies between its skins
+  // (OpenVSP writes it as a component of its own).
+  const test::TempDir dir("inner_sheet");
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(2, 1, 1).Shape();
+  const TopoDS_Shape plane = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0.5), gp_Dir(0, 0, 1)), 0, 2, 0, 1).Face();
+  const std::string path = test::write_compound({box, plane}, dir / "inner.brep");
+  const std::string args = path + " -q --h-max 0.2 -o " + (dir / "i.vtu");
+  const auto j = test::run_with_report(args, dir / "r.json", 0);
+  const auto& prep = j["preparation"];
+  REQUIRE(prep["components"].size() == 2);
+  CHECK(prep["internal_sheets"].get<std::vector<int>>() == std::vector<int>{2});
+  CHECK(prep["components"][1]["role"] == "internal");
+  CHECK(prep["components"][1]["route"] == "left out: a sheet inside a body");
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh"]["area"].get<double>() == Approx(10.0).epsilon(1e-9));
+  const auto r = test::run_sizemesh(args);
+  CHECK(r.status == 0);
+  CHECK(r.err.find("component 2 is an open sheet inside a body (an internal plane): no wall, left out of the "
+                   "wetted surface") != std::string::npos);
+}
+
 TEST_CASE("a flat disk through a body is left out: the box alone, closed, exit 0") {
   // A box 2 x 1 x 1 and a disk across its middle, reaching out of it on
   // every side, as a propeller's disk crosses its nacelle.
