@@ -434,6 +434,21 @@ class Solids {
       boxes_.back().Enlarge(tol);
     }
   }
+  // Every one of `n` points spread over f inside one solid or on its
+  // boundary: a face wholly inside, not one that reaches out of it.
+  bool hold_whole(const TopoDS_Face& f, int n) const {
+    const std::vector<gp_Pnt> points = interior_points(f, n);
+    if (points.empty()) return false;
+    for (size_t i = 0; i < solids_.size(); ++i) {
+      if (std::any_of(points.begin(), points.end(), [&](const gp_Pnt& p) { return boxes_[i].IsOut(p); })) continue;
+      const bool all_in = std::all_of(points.begin(), points.end(), [&](const gp_Pnt& p) {
+        const TopAbs_State st = BRepClass3d_SolidClassifier(solids_[i], p, tol_).State();
+        return st == TopAbs_IN || st == TopAbs_ON;
+      });
+      if (all_in) return true;
+    }
+    return false;
+  }
   bool hold(const TopoDS_Face& f) const {
     const std::vector<gp_Pnt> points = interior_points(f, 5);
     for (size_t i = 0; i < solids_.size(); ++i) {
@@ -851,14 +866,16 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       info.components[k].route = "left out: a flat disk a body passes through, no wall";
       info.left_out.push_back(k + 1);
     }
-  // A sheet whose every face lies inside a body or on its surface (a wing's
-  // planform plane exported as a component of its own, between the skins)
-  // bounds no fluid: it is left out.
+  // A sheet wholly inside a body or on its surface (a wing's planform plane
+  // exported as a component of its own, between the skins) bounds no fluid:
+  // it is left out. Every one of 9 points spread over each face must be in:
+  // a fin reaching out of a body keeps its outer part as a wall.
   const Solids inside(solids, tol);
   for (size_t i = 0; i < sheets.size();) {
     const FaceList faces = faces_of(sheets[i]);
-    const bool held = !solids.empty() && !faces.empty() &&
-                      std::all_of(faces.begin(), faces.end(), [&](const TopoDS_Face& f) { return inside.hold(f); });
+    const bool held = !solids.empty() && !faces.empty() && std::all_of(faces.begin(), faces.end(), [&](const TopoDS_Face& f) {
+                        return inside.hold_whole(f, 9);
+                      });
     if (!held) {
       ++i;
       continue;
