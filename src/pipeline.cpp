@@ -164,6 +164,18 @@ void unite_at_mesh_level(RunResult& r, const MeshOptions& meshing) {
   for (size_t i = 0; i < left.size(); ++i) model.record_mesh_union(left[i], r.report.mesh_union.failures[i]);
 }
 
+// One line naming the open components left out of the wetted surface,
+// `one`/`many` saying what they are and `why` where they lie.
+void warn_left_out(const std::vector<int>& ks, const char* one, const char* many, const char* why,
+                   const WarningSink& warn) {
+  if (ks.empty()) return;
+  std::ostringstream msg;
+  msg << (ks.size() == 1 ? "component" : "components");
+  for (size_t i = 0; i < ks.size(); ++i) msg << (i ? ", " : " ") << ks[i];
+  msg << (ks.size() == 1 ? one : many) << why << ": no wall, left out of the wetted surface";
+  warn(msg.str());
+}
+
 void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning: " << line << "\n"; }
 
 }  // namespace
@@ -196,22 +208,10 @@ std::unique_ptr<RunResult> size_model(const RunOptions& o, const WarningSink& wa
     warn(std::string("a half model, open on the plane ") + static_cast<char>('x' + a) +
          " = 0: its mesh has boundary edges there; --symmetry " + static_cast<char>('x' + a) +
          " with a far field closes it");
-  if (const auto& out = info.preparation.left_out; !out.empty()) {
-    std::ostringstream msg;
-    msg << (out.size() == 1 ? "component" : "components");
-    for (size_t i = 0; i < out.size(); ++i) msg << (i ? ", " : " ") << out[i];
-    msg << (out.size() == 1 ? " is a flat open disk" : " are flat open disks")
-        << " a body passes through (actuator disks): no wall, left out of the wetted surface";
-    warn(msg.str());
-  }
-  if (const auto& in = info.preparation.internal_sheets; !in.empty()) {
-    std::ostringstream msg;
-    msg << (in.size() == 1 ? "component" : "components");
-    for (size_t i = 0; i < in.size(); ++i) msg << (i ? ", " : " ") << in[i];
-    msg << (in.size() == 1 ? " is an open sheet" : " are open sheets")
-        << " inside a body (an internal plane): no wall, left out of the wetted surface";
-    warn(msg.str());
-  }
+  warn_left_out(info.preparation.left_out, " is a flat open disk", " are flat open disks",
+                " a body passes through (actuator disks)", warn);
+  warn_left_out(info.preparation.internal_sheets, " is an open sheet", " are open sheets",
+                " inside a body (an internal plane)", warn);
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r->params, source_face, info.sewn_faces);                    // sizing/
