@@ -808,7 +808,10 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
       b.Add(shell, s);
       shell.Closed(true);
       r.closed = shell;
-    } else if (s.ShapeType() == TopAbs_SHELL || back_to_back) {
+    } else if (s.ShapeType() == TopAbs_SHELL || s.ShapeType() == TopAbs_FACE || back_to_back) {
+      // An open shell, or one open face (OpenVSP writes a whole wing or fin
+      // as one face, its caps folded onto the chord): sewn pieces go through
+      // the repair.
       // Caps built into a skin (OpenVSP's root and tip caps, flat strips
       // folded onto the chord) split off as faces of their own, when that
       // finds caps back to back: two halves' root caps, a pod's tip cap and

@@ -240,6 +240,26 @@ TEST_CASE("OpenVSP's blunt-trailing-edge wing keeps both skins and loses its pla
   CHECK(z_hi > 0.15);
 }
 
+TEST_CASE("OpenVSP's one-piece surfaces: a fin that is one face, its caps folded onto the chord, closes", "[models]") {
+  // OpenVSP 3.15 without split surfaces writes each component as one
+  // B-spline face whose root and tip caps collapse onto the chord line: the
+  // fin comes out of sewing as a single face with two free curves, each
+  // running out to the leading edge and back along itself. Cut at the turn,
+  // its halves sew into a closed body; the planform plane inside it goes.
+  LoadOptions o = test::load_options(true, true);
+  o.describe_only = true;
+  const Model model = load_model(test::model_path("b777_onepiece_openvsp.stp"), o);
+  const Preparation& p = model.info().preparation;
+  REQUIRE(p.components.size() == 7);
+  const Component& fin = p.components[5];
+  CHECK(fin.faces == 1);
+  CHECK(fin.free_curves == 2);
+  CHECK(fin.role == "solid");
+  CHECK(p.components[6].role == "internal");  // the fin's planform plane
+  CHECK(p.components[2].role == "internal");  // the wing's
+  for (size_t k : {0, 1, 3, 4}) CHECK(p.components[k].role == "solid");
+}
+
 TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay, and the planes and caps inside go", "[models]") {
   // Component 1 is a pod with a strut sewn at each side. Each half of the
   // pod is one skin whose root and tip caps are built in: flat strips folded
