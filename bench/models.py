@@ -11,4 +11,5 @@ MODELS = sorted(f for f in os.listdir(DIR) if f.lower().endswith(CAD))
 # The aircraft the union is developed against; they do not all give one closed
 # surface yet (the same list as union_corpus() in tests/test_models.h).
 UNION_CORPUS = ["transport_wbnp_openvsp.stp", "tbw_sugar_openvsp.stp", "pegasus_openvsp.stp",
-                "wing_blunt_te_openvsp.stp", "c172_wing_pygeo.igs"]
+                "wing_blunt_te_openvsp.stp", "wing_blunt_te2_openvsp.stp", "c172_wing_pygeo.igs",
+                "b777_onepiece_openvsp.stp", "b777_nosplit_openvsp.stp"]
