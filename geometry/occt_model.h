@@ -174,8 +174,9 @@ TopoDS_Shape collapse_strips(const TopoDS_Shape& shape, double width,
                              int& collapsed);
 
 // geometry/planar_faces.cpp: faces of `shape` whose surface (a B-spline or
-// other) lies on a plane within `tol` rebuilt on that plane with the same
-// edges, and neighbouring ones cut from one face (`source`) on one plane
+// other) lies on a plane within `tol` and whose parametrisation collapses
+// (inside or along a side) rebuilt on that plane with the same edges, less
+// those of zero length, and neighbouring ones cut from one face (`source`) on one plane
 // merged; `follow(face, result)` for each, `rebuilt` counts the faces
 // rebuilt. Returns `shape` itself when none is, or when the result would be
 // invalid.

@@ -60,6 +60,35 @@ bool mid_normal(const TopoDS_Face& f, gp_Dir& n) {
   return false;
 }
 
+// The plane through the face's surface over its uv box, when every point of
+// a grid there lies within tol of it (least squares: the plane through the
+// centroid normal to the direction of least spread). A collapsed
+// parametrisation is no obstacle, where OCCT's planarity test throws.
+bool fitted_plane(const TopoDS_Face& f, double tol, gp_Pln& plane) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepAdaptor_Surface s(f, false);
+  constexpr int n = 12;
+  std::vector<Vec3> p;
+  Vec3 c = Vec3::Zero();
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const gp_Pnt q = s.Value(u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n);
+      p.emplace_back(q.X(), q.Y(), q.Z());
+      c += p.back();
+    }
+  c /= static_cast<double>(p.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& q : p) cov += (q - c) * (q - c).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues()(1) > 0)) return false;  // a line or a point
+  const Vec3 normal = eig.eigenvectors().col(0);
+  for (const Vec3& q : p)
+    if (std::abs((q - c).dot(normal)) > tol) return false;
+  plane = gp_Pln(gp_Pnt(c.x(), c.y(), c.z()), gp_Dir(normal.x(), normal.y(), normal.z()));
+  return true;
+}
+
 // A degenerate edge, or a closed one no longer than `tol`: a point that the
 // surface's parametrisation stretched into a line.
 bool point_like(const TopoDS_Edge& e, double tol) {
@@ -162,10 +191,23 @@ TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfS
   return result;
 }
 
+// A side of f of zero length that is no degenerate edge.
+bool has_pinched_side(const TopoDS_Face& f, double tol) {
+  for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    if (!BRep_Tool::Degenerated(edge) && point_like(edge, tol)) return true;
+  }
+  return false;
+}
+
 // The shape with its flat faces whose parametrisation collapses (collapses,
 // `borders`) rebuilt on their plane, each checked alone; `replaced` gets
-// each (face, result) pair. Returns `shape` when none is.
-TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders,
+// each (face, result) pair. Returns `shape` when none is. With `pinched`,
+// faces with a side of zero length that is no degenerate edge (a cap half
+// collapsing at both ends of its chord: no front starts from such a side)
+// are taken too, and where OCCT's planarity test throws on them the fitted
+// plane judges.
+TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders, bool pinched,
                           std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& replaced) {
   Handle(BRepTools_ReShape) reshape = new BRepTools_ReShape;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
@@ -173,12 +215,22 @@ TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders,
     if (reshape->IsRecorded(f)) continue;
     try {
       const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
-      if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane || !collapses(f, borders)) continue;
-      GeomLib_IsPlanarSurface planar(s, tol);
-      if (!planar.IsPlanar()) continue;
+      if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane) continue;
+      if (!collapses(f, borders) && !(pinched && has_pinched_side(f, tol))) continue;
+      // OCCT's planarity test, or where it throws on a collapsed
+      // parametrisation, the fitted plane.
+      gp_Pln pln;
+      bool flat = false;
+      try {
+        GeomLib_IsPlanarSurface planar(s, tol);
+        flat = planar.IsPlanar();
+        if (flat) pln = planar.Plan();
+      } catch (const Standard_Failure&) {
+        flat = pinched && fitted_plane(f, tol, pln);
+      }
+      if (!flat) continue;
       gp_Dir n;
       if (!mid_normal(f, n)) continue;
-      gp_Pln pln = planar.Plan();
       if (pln.Axis().Direction().Dot(n) < 0) pln.SetAxis(pln.Axis().Reversed());
       const TopoDS_Face g = on_plane(f, new Geom_Plane(pln), tol);
       if (g.IsNull()) continue;
@@ -205,7 +257,7 @@ TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_
   rebuilt = 0;
   if (shape.IsNull()) return shape;
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
-  const TopoDS_Shape result = rebuild_flat(shape, tol, false, replaced);
+  const TopoDS_Shape result = rebuild_flat(shape, tol, false, true, replaced);
   if (replaced.empty() || !BRepCheck_Analyzer(result).IsValid() ||
       (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
     return shape;
@@ -225,7 +277,7 @@ TopoDS_Shape flat_faces_before_sewing(const TopoDS_Shape& shape, double tol, Top
   BRepBuilderAPI_Copy copy(shape, true, false);
   const TopoDS_Shape copied = copy.Shape();
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
-  const TopoDS_Shape result = rebuild_flat(copied, tol, true, replaced);
+  const TopoDS_Shape result = rebuild_flat(copied, tol, true, false, replaced);
   TopTools_DataMapOfShapeShape to_plane;
   for (const auto& [f, g] : replaced) to_plane.Bind(f, g);
   for (const TopAbs_ShapeEnum type : {TopAbs_FACE, TopAbs_SOLID})

@@ -260,6 +260,27 @@ TEST_CASE("OpenVSP's one-piece surfaces: a fin that is one face, its caps folded
   for (size_t k : {0, 1, 3, 4}) CHECK(p.components[k].role == "solid");
 }
 
+TEST_CASE("OpenVSP's one-piece fin: its caps, halves folded onto the chord, become flat faces with no point-like curve", "[models]") {
+  // The fin of this export is one skin and one cap face per end; cut at the
+  // caps' turn, each cap half is a B-spline ruled between the chord line and
+  // the airfoil, collapsing at both ends of the chord into curves of zero
+  // length that the front cannot start from. Flat, they are rebuilt on their
+  // plane without those curves.
+  const Model model = load_model(test::model_path("b777_nosplit_openvsp.stp"));
+  const Preparation& p = model.info().preparation;
+  CHECK(p.faces_made_planar >= 4);
+  CHECK(model.closed());
+  int point_like = 0;
+  for (int f = 1; f <= model.num_faces(); ++f)
+    for (const FaceLoop& loop : model.face_loops(f))
+      for (const CurveUse& c : loop)
+        if (!model.curve_degenerated(c.curve) && model.curve_length(c.curve) <= 1e-9 * model.info().diagonal()) {
+          INFO("face " << f << " curve " << c.curve);
+          ++point_like;
+        }
+  CHECK(point_like == 0);
+}
+
 TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay, and the planes and caps inside go", "[models]") {
   // Component 1 is a pod with a strut sewn at each side. Each half of the
   // pod is one skin whose root and tip caps are built in: flat strips folded
