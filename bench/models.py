@@ -12,4 +12,4 @@ MODELS = sorted(f for f in os.listdir(DIR) if f.lower().endswith(CAD))
 # surface yet (the same list as union_corpus() in tests/test_models.h).
 UNION_CORPUS = ["transport_wbnp_openvsp.stp", "tbw_sugar_openvsp.stp", "pegasus_openvsp.stp",
                 "wing_blunt_te_openvsp.stp", "wing_blunt_te2_openvsp.stp", "c172_wing_pygeo.igs",
-                "b777_onepiece_openvsp.stp", "b777_nosplit_openvsp.stp"]
+                "b777_onepiece_openvsp.stp", "b777_nosplit_openvsp.stp", "f16_vsp311_openvsp.stp"]

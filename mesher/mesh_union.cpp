@@ -2,6 +2,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -105,13 +106,13 @@ std::string unfit(Tracked& t, std::vector<FI>& crossing) {
   return {};
 }
 
-// True when every corner of the triangles `tris` of `t` lies strictly inside
-// the closed mesh `base`: a fold there is dropped by the union.
-bool inside_base(const Tracked& t, const std::vector<FI>& tris, const Mesh& base) {
+// True when every corner of the triangles `tris` of `m` lies strictly inside
+// the closed mesh `base`: a fold there, or the whole piece, is dropped by the union.
+bool inside_base(const Mesh& m, const std::vector<FI>& tris, const Mesh& base) {
   const CGAL::Side_of_triangle_mesh<Mesh, K> side(base);
   for (FI f : tris)
-    for (VI v : CGAL::vertices_around_face(t.m.halfedge(f), t.m))
-      if (side(t.m.point(v)) != CGAL::ON_BOUNDED_SIDE) return false;
+    for (VI v : CGAL::vertices_around_face(m.halfedge(f), m))
+      if (side(m.point(v)) != CGAL::ON_BOUNDED_SIDE) return false;
   return true;
 }
 
@@ -471,7 +472,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     if (why.empty()) why = unfit(*part, crossing);
     const bool folded = why == kCrossesItself;
     if (folded && !last_pass) return waiting.push_back(i);
-    if (folded && base && inside_base(*part, crossing, base->m)) why.clear();
+    if (folded && base && inside_base(part->m, crossing, base->m)) why.clear();
     else if (folded) why = "its mesh intersects itself outside the other components";
     if (!why.empty()) return fail(why);
     for (VI v : part->m.vertices()) base_nodes.insert(part->node[v]);
@@ -480,25 +481,42 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       return;
     }
     auto before = std::make_unique<Tracked>(*base);
+    // A union of volumes holds the larger of the two and no more than both:
+    // a corefinement that went wrong (a folded skin) can give less, even
+    // nothing, and still cross nowhere. A folded piece's own volume counts
+    // its fold twice or not at all, so only the base's bounds it then.
+    const double volume_base = PMP::volume(base->m), volume_part = PMP::volume(part->m);
+    const Mesh part_copy = part->m;
     Follow follow;
     follow.s->a = base.get();
     follow.s->b = part.get();
     auto cut_now = base->m.add_property_map<EI, bool>("e:cut_now", false).first;
-    bool ok = false;
+    std::string wrong;
     try {
-      ok = PMP::corefine_and_compute_union(base->m, part->m, base->m,
+      if (!PMP::corefine_and_compute_union(base->m, part->m, base->m,
                                            PMP::parameters::visitor(follow).throw_on_self_intersection(!folded),
                                            PMP::parameters::default_values(),
-                                           PMP::parameters::edge_is_constrained_map(cut_now));
-      if (ok && folded) ok = !PMP::does_self_intersect(base->m);
+                                           PMP::parameters::edge_is_constrained_map(cut_now)))
+        wrong = "the corefinement of its mesh with the rest failed";
+      else if (folded && PMP::does_self_intersect(base->m))
+        wrong = "its mesh intersects itself, and its union with the rest does too";
+      const double v = wrong.empty() ? PMP::volume(base->m) : 0.0;
+      const double slack = 1e-6 * (volume_base + std::abs(volume_part));
+      const double least = folded ? volume_base : std::max(volume_base, volume_part);
+      if (wrong.empty() && (v < least - slack || (!folded && v > volume_base + volume_part + slack)))
+        wrong = "its union with the rest would bound " + std::to_string(v) + " instead of " +
+                std::to_string(least) + " or more (a corefinement gone wrong)";
     } catch (const std::exception&) {
-      ok = false;
+      wrong = "the corefinement of its mesh with the rest failed";
     }
-    if (!ok) {
+    if (!wrong.empty()) {
       for (VI v : part->m.vertices()) base_nodes.erase(part->node[v]);
       base = std::move(before);
-      return fail(folded ? "its mesh intersects itself, and its union with the rest does too"
-                         : "the corefinement of its mesh with the rest failed");
+      // A piece wholly inside the rest adds nothing to the union: its
+      // triangles go, and it counts as united.
+      std::vector<FI> all(part_copy.faces().begin(), part_copy.faces().end());
+      if (inside_base(part_copy, all, base->m)) return;
+      return fail(wrong);
     }
     adopt_orphans(*base);
     for (EI e : base->m.edges())

@@ -43,7 +43,8 @@ inline const std::vector<std::string>& union_corpus() {
   static const std::vector<std::string> files = {"transport_wbnp_openvsp.stp", "tbw_sugar_openvsp.stp",
                                                  "pegasus_openvsp.stp", "wing_blunt_te_openvsp.stp",
                                                  "wing_blunt_te2_openvsp.stp", "c172_wing_pygeo.igs",
-                                                 "b777_onepiece_openvsp.stp", "b777_nosplit_openvsp.stp"};
+                                                 "b777_onepiece_openvsp.stp", "b777_nosplit_openvsp.stp",
+                                                 "f16_vsp311_openvsp.stp"};
   return files;
 }
 
