@@ -84,6 +84,14 @@ SurfaceMesh mesh_closed(const Model& model, double h) {
   return m;
 }
 
+// A model of tests/data sewn and repaired, without the union (what --info
+// describes).
+Model described(const std::string& file) {
+  LoadOptions o;
+  o.describe_only = true;
+  return load_model(test::model_path(file), o);
+}
+
 // Triangles using each mesh edge.
 std::map<std::pair<int, int>, int> edge_uses(const SurfaceMesh& m) {
   std::map<std::pair<int, int>, int> uses;
@@ -246,9 +254,7 @@ TEST_CASE("OpenVSP's one-piece surfaces: a fin that is one face, its caps folded
   // fin comes out of sewing as a single face with two free curves, each
   // running out to the leading edge and back along itself. Cut at the turn,
   // its halves sew into a closed body; the planform plane inside it goes.
-  LoadOptions o = test::load_options(true, true);
-  o.describe_only = true;
-  const Model model = load_model(test::model_path("b777_onepiece_openvsp.stp"), o);
+  const Model model = described("b777_onepiece_openvsp.stp");
   const Preparation& p = model.info().preparation;
   REQUIRE(p.components.size() == 7);
   const Component& fin = p.components[5];
@@ -293,9 +299,7 @@ TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips
   // its tip (the two sides of its boundary run along the same line with
   // different parametrisations), and a planform plane. Split at the pinch, a
   // strut's skin closes over its tip.
-  LoadOptions o;
-  o.describe_only = true;
-  const Model model = load_model(test::model_path("tbw_sugar_openvsp.stp"), o);
+  const Model model = described("tbw_sugar_openvsp.stp");
   const Preparation& p = model.info().preparation;
   REQUIRE(p.components.size() == 7);
   const Component& pod = p.components[0];
