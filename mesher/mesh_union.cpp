@@ -486,7 +486,6 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     // nothing, and still cross nowhere. A folded piece's own volume counts
     // its fold twice or not at all, so only the base's bounds it then.
     const double volume_base = PMP::volume(base->m), volume_part = PMP::volume(part->m);
-    const Mesh part_copy = part->m;
     Follow follow;
     follow.s->a = base.get();
     follow.s->b = part.get();
@@ -503,9 +502,13 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       const double v = wrong.empty() ? PMP::volume(base->m) : 0.0;
       const double slack = 1e-6 * (volume_base + std::abs(volume_part));
       const double least = folded ? volume_base : std::max(volume_base, volume_part);
-      if (wrong.empty() && (v < least - slack || (!folded && v > volume_base + volume_part + slack)))
-        wrong = "its union with the rest would bound " + std::to_string(v) + " instead of " +
-                std::to_string(least) + " or more (a corefinement gone wrong)";
+      const double most = volume_base + volume_part;
+      if (wrong.empty() && v < least - slack)
+        wrong = "its union with the rest would bound " + std::to_string(v) + ", less than " + std::to_string(least) +
+                " (a corefinement gone wrong)";
+      else if (wrong.empty() && !folded && v > most + slack)
+        wrong = "its union with the rest would bound " + std::to_string(v) + ", more than both, " +
+                std::to_string(most) + " (a corefinement gone wrong)";
     } catch (const std::exception&) {
       wrong = "the corefinement of its mesh with the rest failed";
     }
@@ -514,8 +517,11 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       base = std::move(before);
       // A piece wholly inside the rest adds nothing to the union: its
       // triangles go, and it counts as united.
-      std::vector<FI> all(part_copy.faces().begin(), part_copy.faces().end());
-      if (inside_base(part_copy, all, base->m)) return;
+      Tracked whole;  // the piece as it was (the corefinement changed part)
+      if (build(s, pieces[i], whole)) {
+        const std::vector<FI> all(whole.m.faces().begin(), whole.m.faces().end());
+        if (inside_base(whole.m, all, base->m)) return;
+      }
       return fail(wrong);
     }
     adopt_orphans(*base);
