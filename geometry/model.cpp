@@ -360,7 +360,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
     std::vector<double> area(info.faces, -1.0);
     tbb::parallel_for(0, info.faces, [&](int f) {
       const TopoDS_Shape& face = impl->faces(f + 1);
-      area[f] = cad.area.IsBound(face) ? cad.area(face) : face_area_exact(face, 1e-7);
+      area[f] = cad.area.IsBound(face) ? cad.area(face) : face_area_exact(face, 1e-4);
     });
     impl->face_data.reserve(info.faces);
     for (int f = 1; f <= info.faces; ++f)
