@@ -492,7 +492,10 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
       xyz.push_back(x);
     }
   }
-  std::set<int> cut;  // the faces on either side of a junction
+  // The faces on either side of a junction, and those the union's band
+  // remesh reached: its uniform length splits the CAD curves it crosses, and
+  // a face beyond them is left with fans of slivers on each split edge.
+  std::set<int> cut = u.band_faces;
   for (const Chain& c : chains)
     for (size_t j = 0; j + 1 < c.nodes.size(); ++j)
       for (int t : topo.edge_tris.at(edge_key(c.nodes[j], c.nodes[j + 1]))) cut.insert(s.tri_face[t]);

@@ -10,7 +10,8 @@
 //
 // Input:  s        the united mesh; u what unite_meshes() reported (its cut edges)
 //         g, h, o  the geometry, the size map and the mesher's options
-// Output: s with every face the junction touches meshed again; u's junction,
+// Output: s with every face the junction touches, or the union's band
+//         remesh reached (u.band_faces), meshed again; u's junction,
 //         its node count and their distances from the surfaces as they end.
 //         A face whose region cannot be walked in uv (corners whose uv
 //         disagree, a junction that leaves the parameter domain) or meshed,

@@ -348,6 +348,14 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
     // CGAL's remesher does not promise a surface free of self-intersections
     // (a band folds where two surfaces graze): a class that adds one is undone.
     const Mesh before = m;
+    // Their CAD faces, and those across their edges: a split edge on the
+    // band's rim splits the triangle beyond it too.
+    std::set<int> touched;
+    for (FI f : faces)
+      for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) {
+        touched.insert(t.face[f]);
+        if (const FI across = m.face(m.opposite(h)); across != Mesh::null_face()) touched.insert(t.face[across]);
+      }
     PMP::isotropic_remeshing(faces, std::pow(1.25, c + 0.5), m,
                              PMP::parameters::number_of_iterations(3)
                                  .edge_is_constrained_map(t.cut)
@@ -365,6 +373,7 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
     } else {
       crossing = now;
       out.band_triangles += static_cast<int>(faces.size());
+      out.band_faces.insert(touched.begin(), touched.end());
     }
   }
   m.remove_property_map(fixed);
