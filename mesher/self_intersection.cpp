@@ -1,10 +1,10 @@
 #include "mesher/self_intersection.h"
 
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <mutex>
 
 #include "geometry/predicates.h"
 #include "geometry/triangle_bvh.h"
@@ -74,10 +74,19 @@ SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
   // Zero-area triangles are counted apart (quality report), not here.
   std::vector<char> flat(nt);
   tbb::parallel_for(0, nt, [&](int t) { flat[t] = zero_area(m.xyz[m.tris[t][0]], m.xyz[m.tris[t][1]], m.xyz[m.tris[t][2]]); });
+  // Each thread keeps its `keep` smallest pairs (trimmed when twice that
+  // many), so the pairs kept are the `keep` smallest of all, whichever
+  // thread found them: callers that act on them (cut_faces.cpp) act alike
+  // on every run.
   tbb::combinable<long long> count;
-  std::mutex mutex;
+  tbb::enumerable_thread_specific<std::vector<std::array<int, 2>>> found;
+  auto trim = [keep](std::vector<std::array<int, 2>>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(keep), v.end());
+    v.resize(keep);
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, nt, 1024), [&](const tbb::blocked_range<int>& r) {
     long long& mine = count.local();
+    auto& pairs = found.local();
     for (int s = r.begin(); s != r.end(); ++s) {
       const auto& cs = bvh.corners(s);
       if (flat[s]) continue;
@@ -85,12 +94,15 @@ SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
         if (t <= s || flat[t]) return;
         if (!pair_meets(m.tris[s], m.tris[t], cs, bvh.corners(t))) return;
         ++mine;
-        std::lock_guard<std::mutex> lock(mutex);
-        if (out.kept.size() < keep) out.kept.push_back({s, t});
+        if (keep == 0) return;
+        pairs.push_back({s, t});
+        if (pairs.size() / 2 >= keep) trim(pairs);
       });
     }
   });
   out.pairs = count.combine([](long long a, long long b) { return a + b; });
+  for (auto& pairs : found) out.kept.insert(out.kept.end(), pairs.begin(), pairs.end());
+  if (out.kept.size() > keep) trim(out.kept);
   std::sort(out.kept.begin(), out.kept.end());
   return out;
 }

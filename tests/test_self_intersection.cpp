@@ -95,3 +95,36 @@ TEST_CASE("random triangle soups: the count equals CGAL's exact count") {
     CHECK(count(m) == exact(m));
   }
 }
+
+TEST_CASE("the pairs kept are the smallest ones, whichever thread finds them") {
+  // Two strips of 4,000 triangles each, crossing at right angles: every
+  // triangle of one meets a few of the other, in blocks the threads take in
+  // any order. The 50 pairs kept are the 50 smallest of all, on every run.
+  std::vector<Vec3> xyz;
+  std::vector<std::array<int, 3>> tris;
+  const int n = 2000;
+  for (int strip = 0; strip < 2; ++strip) {
+    const int base = static_cast<int>(xyz.size());
+    for (int i = 0; i <= n; ++i) {
+      const double s = -1.0 + 2.0 * i / n;
+      xyz.push_back(strip == 0 ? Vec3(s, -1, 0) : Vec3(0.3 * s, 0.3 * s, -1));
+      xyz.push_back(strip == 0 ? Vec3(s, 1, 0) : Vec3(0.3 * s, 0.3 * s, 1));
+    }
+    for (int i = 0; i < n; ++i) {
+      const int a = base + 2 * i;
+      tris.push_back({a, a + 2, a + 1});
+      tris.push_back({a + 1, a + 2, a + 3});
+    }
+  }
+  const SurfaceMesh m = make(xyz, tris);
+  const SelfIntersections all = find_self_intersections(m, static_cast<size_t>(-1));
+  REQUIRE(all.pairs > 1000);
+  REQUIRE(all.kept.size() == static_cast<size_t>(all.pairs));
+  const std::vector<std::array<int, 3>>::size_type keep = 50;
+  const std::vector<std::array<int, 2>> smallest(all.kept.begin(), all.kept.begin() + keep);
+  for (int run = 0; run < 5; ++run) {
+    const SelfIntersections some = find_self_intersections(m, keep);
+    CHECK(some.pairs == all.pairs);
+    CHECK(some.kept == smallest);
+  }
+}
