@@ -48,6 +48,7 @@
 #include <TopoDS_Solid.hxx>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -408,16 +409,6 @@ std::vector<gp_Pnt> interior_points(const TopoDS_Face& f, int wanted) {
   return out;
 }
 
-// True when most of the points lie inside the solid or on its boundary.
-bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid, double tol) {
-  int in = 0;
-  for (const auto& p : points) {
-    BRepClass3d_SolidClassifier cls(solid, p, tol);
-    in += cls.State() == TopAbs_IN || cls.State() == TopAbs_ON;
-  }
-  return 2 * in > static_cast<int>(points.size());
-}
-
 // Solids asked whether a face lies inside one of them or on its boundary:
 // most of a few points spread over it do, for one solid. One point alone may
 // sit where another body touches the face (a jury strut's foot on a strut), or
@@ -427,7 +418,8 @@ bool mostly_inside(const std::vector<gp_Pnt>& points, const TopoDS_Shape& solid,
 // faces.
 class Solids {
  public:
-  Solids(const std::vector<TopoDS_Shape>& solids, double tol) : solids_(solids), tol_(tol) {
+  Solids(const std::vector<TopoDS_Shape>& solids, double tol)
+      : solids_(solids), classifiers_(solids.size()), tol_(tol) {
     for (const auto& s : solids_) {
       boxes_.emplace_back();
       BRepBndLib::Add(s, boxes_.back(), false);
@@ -441,26 +433,34 @@ class Solids {
     if (points.empty()) return false;
     for (size_t i = 0; i < solids_.size(); ++i) {
       if (std::any_of(points.begin(), points.end(), [&](const gp_Pnt& p) { return boxes_[i].IsOut(p); })) continue;
-      const bool all_in = std::all_of(points.begin(), points.end(), [&](const gp_Pnt& p) {
-        const TopAbs_State st = BRepClass3d_SolidClassifier(solids_[i], p, tol_).State();
-        return st == TopAbs_IN || st == TopAbs_ON;
-      });
-      if (all_in) return true;
+      if (std::all_of(points.begin(), points.end(), [&](const gp_Pnt& p) { return within(i, p); })) return true;
     }
     return false;
   }
+  // Most of 5 points spread over f inside one solid or on its boundary.
   bool hold(const TopoDS_Face& f) const {
     const std::vector<gp_Pnt> points = interior_points(f, 5);
     for (size_t i = 0; i < solids_.size(); ++i) {
       const auto in_box =
           std::count_if(points.begin(), points.end(), [&](const gp_Pnt& p) { return !boxes_[i].IsOut(p); });
-      if (2 * in_box > static_cast<long>(points.size()) && mostly_inside(points, solids_[i], tol_)) return true;
+      if (2 * in_box <= static_cast<long>(points.size())) continue;
+      const auto in = std::count_if(points.begin(), points.end(), [&](const gp_Pnt& p) { return within(i, p); });
+      if (2 * in > static_cast<long>(points.size())) return true;
     }
     return false;
   }
 
  private:
+  // p inside solid i or on its boundary. The classifier is loaded once per
+  // solid (loading maps its faces and boxes, most of a classification's cost).
+  bool within(size_t i, const gp_Pnt& p) const {
+    if (!classifiers_[i]) classifiers_[i] = std::make_unique<BRepClass3d_SolidClassifier>(solids_[i]);
+    classifiers_[i]->Perform(p, tol_);
+    const TopAbs_State st = classifiers_[i]->State();
+    return st == TopAbs_IN || st == TopAbs_ON;
+  }
   std::vector<TopoDS_Shape> solids_;
+  mutable std::vector<std::unique_ptr<BRepClass3d_SolidClassifier>> classifiers_;
   std::vector<Bnd_Box> boxes_;
   double tol_;
 };
