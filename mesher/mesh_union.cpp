@@ -17,6 +17,7 @@
 #include <memory>
 #include <numeric>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "geometry/triangle_bvh.h"
@@ -157,6 +158,55 @@ void adopt_orphans(Tracked& t) {
       orphans.swap(left);
     }
   }
+}
+
+// t renumbered in an order that depends on the geometry alone: vertices by
+// their coordinates, triangles by their vertices. CGAL's corefinement breaks
+// ties between boxes by their heap address, so its new vertices and faces
+// come in an order that changes from run to run, and the band remesh, which
+// visits them in order, would give a different mesh each time.
+void renumber(Tracked& t) {
+  const Mesh& m = t.m;
+  std::vector<VI> vertices;
+  for (FI f : m.faces())
+    for (VI v : CGAL::vertices_around_face(m.halfedge(f), m)) vertices.push_back(v);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  auto key = [&](VI v) {
+    const Point& p = m.point(v);
+    return std::make_tuple(p.x(), p.y(), p.z(), t.node[v]);
+  };
+  std::stable_sort(vertices.begin(), vertices.end(), [&](VI a, VI b) { return key(a) < key(b); });
+  Tracked out;
+  std::map<VI, VI> to;
+  for (VI v : vertices) {
+    const VI w = out.m.add_vertex(m.point(v));
+    out.node[w] = t.node[v];
+    to[v] = w;
+  }
+  // Each triangle from its lowest new vertex, turning as before.
+  std::vector<std::pair<std::array<uint32_t, 3>, FI>> faces;
+  for (FI f : m.faces()) {
+    std::array<uint32_t, 3> c;
+    int k = 0;
+    for (VI v : CGAL::vertices_around_face(m.halfedge(f), m)) c[k++] = static_cast<uint32_t>(to.at(v));
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    faces.emplace_back(c, f);
+  }
+  std::sort(faces.begin(), faces.end());
+  for (const auto& [c, f] : faces) {
+    const FI g = out.m.add_face(VI(c[0]), VI(c[1]), VI(c[2]));
+    if (g == Mesh::null_face()) return;  // not a manifold surface: left as it was
+    out.tri[g] = t.tri[f];
+    out.face[g] = t.face[f];
+  }
+  for (EI e : m.edges()) {
+    if (!t.cut[e]) continue;
+    const auto h = out.m.halfedge(to.at(m.vertex(e, 0)), to.at(m.vertex(e, 1)));
+    if (h != Mesh::null_halfedge()) out.cut[out.m.edge(h)] = true;
+  }
+  t.m = out.m;
+  t.attach();
 }
 
 // Carries the source triangle, CAD face and node through the corefinement.
@@ -351,11 +401,11 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
     // Their CAD faces, and those across their edges: a split edge on the
     // band's rim splits the triangle beyond it too.
     std::set<int> touched;
-    for (FI f : faces)
-      for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) {
-        touched.insert(t.face[f]);
+    for (FI f : faces) {
+      touched.insert(t.face[f]);
+      for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m))
         if (const FI across = m.face(m.opposite(h)); across != Mesh::null_face()) touched.insert(t.face[across]);
-      }
+    }
     PMP::isotropic_remeshing(faces, std::pow(1.25, c + 0.5), m,
                              PMP::parameters::number_of_iterations(3)
                                  .edge_is_constrained_map(t.cut)
@@ -542,6 +592,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (size_t i : waiting) take(i, true);
   for (size_t p = 0; p < parts.size(); ++p) out.united += out.failures[p].empty();
   if (!base) base = std::make_unique<Tracked>();
+  renumber(*base);
   remesh_bands(*base, s, g, node_h, near_cut, out);
   base->m.collect_garbage();
   Mesh& m = base->m;

@@ -40,7 +40,7 @@ struct MeshUnionResult {
   int junction_nodes_unprojected = 0; // of those, nodes a surface's projection did not reach (left out of the gap)
   double max_junction_gap = 0;        // largest distance of a projected junction node from either surface
   std::vector<std::array<int, 2>> junction;  // the cut edges (node pairs) in the united mesh
-  std::set<int> band_faces;                  // CAD faces with triangles in a remeshed band
+  std::set<int> band_faces;                  // CAD faces with triangles in, or next to, a remeshed band
 };
 
 // Counts junction node x into u: projected onto the surface of each face of
