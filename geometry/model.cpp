@@ -433,11 +433,19 @@ int Model::num_faces() const { return impl_->faces.Extent(); }
 int Model::num_curves() const { return impl_->edges.Extent(); }
 int Model::num_points() const { return impl_->vertices.Extent(); }
 
+GeomAdaptor_Surface& Model::Impl::adaptor(int face) const {
+  auto& mine = adaptors.local();
+  if (mine.empty()) mine.resize(face_data.size());
+  auto& a = mine[face - 1];
+  if (!a) a = std::make_unique<GeomAdaptor_Surface>(face_data[face - 1].surface);
+  return *a;
+}
+
 SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
   gp_Pnt p;
   gp_Vec du, dv;
   try {
-    impl_->face_data[face - 1].surface->D1(uv.x(), uv.y(), p, du, dv);
+    impl_->adaptor(face).D1(uv.x(), uv.y(), p, du, dv);
   } catch (const Standard_Failure& e) {
     throw EvaluationError("face " + std::to_string(face) + ": " + e.GetMessageString());
   }

@@ -3,6 +3,7 @@
 
 #include <BOPAlgo_Builder.hxx>
 #include <Geom2d_Curve.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <TopTools_DataMapOfShapeInteger.hxx>
@@ -10,6 +11,8 @@
 #include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <functional>
+#include <memory>
+#include <tbb/enumerable_thread_specific.h>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Shell.hxx>
@@ -52,6 +55,13 @@ struct Model::Impl {
   std::vector<OcctCurve> curve_data;  // index id - 1
   std::vector<int> source_face;       // index id - 1: the sewn model's face it came from
   std::vector<Boundary> boundary;     // index id - 1: what the face bounds (Wall when empty)
+  // Per thread, each face's surface behind an adaptor that caches the
+  // polynomial of the B-spline span it last evaluated (BSplSLib_Cache): the
+  // mesher's evaluations come in runs within a span, and a cached span
+  // evaluates several times faster than locating it and running de Boor anew.
+  // An adaptor is not thread-safe, so each thread has its own, made on first use.
+  mutable tbb::enumerable_thread_specific<std::vector<std::unique_ptr<GeomAdaptor_Surface>>> adaptors;
+  GeomAdaptor_Surface& adaptor(int face) const;
 };
 
 // A file's shape after sewing, before preparation: what read_cad returns.
