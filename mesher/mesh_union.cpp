@@ -5,7 +5,9 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -311,10 +313,25 @@ class FaceTriangles {
   std::unordered_map<int, std::unique_ptr<TriangleBVH>> tree_;
 };
 
-// Pairs of triangles of m that intersect.
-size_t crossing_pairs(const Mesh& m) {
+// Pairs of triangles of m that intersect, both within `zone` (boxes): a
+// remesh inside the zone changes no pair outside it.
+size_t crossing_pairs(const Mesh& m, const std::vector<CGAL::Bbox_3>& zone) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, size_t>;
+  std::vector<Box> zones, faces;
+  CGAL::Bbox_3 all;
+  for (size_t i = 0; i < zone.size(); ++i) zones.emplace_back(zone[i], i), all += zone[i];
+  std::vector<FI> handles;
+  for (FI f : m.faces())
+    if (const CGAL::Bbox_3 b = PMP::face_bbox(f, m); CGAL::do_overlap(b, all))
+      faces.emplace_back(b, handles.size()), handles.push_back(f);
+  std::vector<char> near(handles.size(), 0);
+  CGAL::box_intersection_d(zones.begin(), zones.end(), faces.begin(), faces.end(),
+                           [&](const Box&, const Box& f) { near[f.info()] = 1; });
+  std::vector<FI> within;
+  for (size_t i = 0; i < handles.size(); ++i)
+    if (near[i]) within.push_back(handles[i]);
   size_t n = 0;
-  PMP::self_intersections(m, boost::make_function_output_iterator([&n](const std::pair<FI, FI>&) { ++n; }));
+  PMP::self_intersections(within, m, boost::make_function_output_iterator([&n](const std::pair<FI, FI>&) { ++n; }));
   return n;
 }
 
@@ -393,10 +410,20 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
   std::map<int, std::vector<FI>> classes;  // size class -> band faces
   for (const auto& [f, id] : region)
     if (length[id] > 0) classes[static_cast<int>(std::floor(std::log(length[id]) / std::log(1.25)))].push_back(f);
-  size_t crossing = crossing_pairs(m);  // the corefinement's own, from rounding its points to doubles
   for (auto& [c, faces] : classes) {
     // CGAL's remesher does not promise a surface free of self-intersections
     // (a band folds where two surfaces graze): a class that adds one is undone.
+    // Its triangles stay within an edge length of the band's, so the pairs
+    // counted are those near the band, before and after (the corefinement
+    // leaves a few of its own, from rounding its points to doubles).
+    const double length = std::pow(1.25, c + 0.5);
+    std::vector<CGAL::Bbox_3> zone;
+    for (FI f : faces) {
+      const CGAL::Bbox_3 b = PMP::face_bbox(f, m);
+      zone.emplace_back(b.xmin() - length, b.ymin() - length, b.zmin() - length, b.xmax() + length,
+                        b.ymax() + length, b.zmax() + length);
+    }
+    const size_t crossing = crossing_pairs(m, zone);
     const Mesh before = m;
     // Their CAD faces, and those across their edges: a split edge on the
     // band's rim splits the triangle beyond it too.
@@ -406,22 +433,20 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
       for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m))
         if (const FI across = m.face(m.opposite(h)); across != Mesh::null_face()) touched.insert(t.face[across]);
     }
-    PMP::isotropic_remeshing(faces, std::pow(1.25, c + 0.5), m,
+    PMP::isotropic_remeshing(faces, length, m,
                              PMP::parameters::number_of_iterations(3)
                                  .edge_is_constrained_map(t.cut)
                                  .vertex_is_constrained_map(fixed)
                                  .face_patch_map(patch)
                                  .relax_constraints(true));
     for (FI f : m.faces()) t.face[f] = patch[f] / 4;
-    const size_t now = crossing_pairs(m);
-    if (now > crossing) {
+    if (crossing_pairs(m, zone) > crossing) {
       m = before;
       t.attach();
       fixed = m.property_map<VI, bool>("v:fixed").first;
       patch = m.property_map<FI, int>("f:patch").first;
       ++out.band_classes_undone;
     } else {
-      crossing = now;
       out.band_triangles += static_cast<int>(faces.size());
       out.band_faces.insert(touched.begin(), touched.end());
     }
