@@ -142,7 +142,7 @@ TEST_CASE("after the union the .msh groups and the .vtu fields carry the source 
   // physical group of the sewn face it came from.
   const std::string model = test::model_path("f16_openvsp.stp");
   const std::string msh = scratch("u.msh"), vtu = scratch("u.vtu");
-  for (const auto& path : {msh, vtu}) REQUIRE(test::run_sizemesh(model + " -q --h-max 2 -o " + path).status == 0);
+  for (const auto& path : {msh, vtu}) REQUIRE(test::run_sizemesh(model + " -q --union-seconds 120 --h-max 2 -o " + path).status == 0);
   std::istringstream text(test::slurp(msh));
   std::string line;
   int groups = -1, entities = -1;

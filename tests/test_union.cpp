@@ -142,14 +142,15 @@ TEST_CASE("components the B-rep union cannot take within its budget are united a
   CHECK(j["mesh_union"]["junction_nodes"] > 500);
   check_one_closed_surface(j["mesh"]);
   // Without a budget to run out, the same model unites whole as a B-rep.
-  const auto whole = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q", (dir / "w.json"), 0);
+  const auto whole =
+      test::run_with_report(test::model_path("f16_openvsp.stp") + " -q --union-seconds 120", (dir / "w.json"), 0);
   CHECK(whole["preparation"]["not_united"].empty());
   for (const auto& c : whole["preparation"]["components"]) CHECK(c["route"] == "B-rep union");
 }
 
 TEST_CASE("a component the mesh-union option names is united at mesh level while the others take the B-rep route") {
   const test::TempDir dir("union_mixed");
-  const auto j = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q --mesh-union 5 -o " +
+  const auto j = test::run_with_report(test::model_path("f16_openvsp.stp") + " -q --union-seconds 120 --mesh-union 5 -o " +
                                            (dir / "f16.vtu"),
                                        (dir / "r.json"), 0);
   const auto& comps = j["preparation"]["components"];
