@@ -537,7 +537,7 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       // free boundary is divided).
       if (!loose &&
           ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) ||
-           !BRepCheck_Analyzer(result, true, true).IsValid()))
+           !new_faces_valid(shape, result)))
         return shape;
       BRep_Builder b;
       TopoDS_Compound loose_faces;

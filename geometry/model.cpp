@@ -3,6 +3,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
@@ -51,6 +52,18 @@ int count_free_curves(const TopoDS_Shape& shape) {
     if (faces.Extent() == 1 && !BRep_Tool::IsClosed(e, TopoDS::Face(faces.First()))) ++free;
   }
   return free;
+}
+
+bool new_faces_valid(const TopoDS_Shape& before, const TopoDS_Shape& after) {
+  TopTools_IndexedMapOfShape old;
+  TopExp::MapShapes(before, TopAbs_FACE, old);
+  TopoDS_Compound fresh;
+  BRep_Builder b;
+  b.MakeCompound(fresh);
+  bool any = false;
+  for (TopExp_Explorer ex(after, TopAbs_FACE); ex.More(); ex.Next())
+    if (!old.Contains(ex.Current())) b.Add(fresh, ex.Current()), any = true;
+  return !any || BRepCheck_Analyzer(fresh, true, true).IsValid();
 }
 
 TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell) {

@@ -182,7 +182,7 @@ TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfS
   } catch (const Standard_Failure&) {
     return shape;
   }
-  if (result.IsNull() || !BRepCheck_Analyzer(result).IsValid() ||
+  if (result.IsNull() || !new_faces_valid(shape, result) ||
       (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
     return shape;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next())
@@ -258,7 +258,7 @@ TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_
   if (shape.IsNull()) return shape;
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
   const TopoDS_Shape result = rebuild_flat(shape, tol, false, true, replaced);
-  if (replaced.empty() || !BRepCheck_Analyzer(result).IsValid() ||
+  if (replaced.empty() || !new_faces_valid(shape, result) ||
       (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
     return shape;
   TopTools_MapOfShape on_planes;
