@@ -117,13 +117,16 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
 
 class Deadline;
 // geometry/unite.cpp: the union of closed `solids` (each of info.components
-// [component[i]]) one at a time, grouped by overlapping boxes, each step
-// checked and retried (fuzzy, healed) within `deadline`. Returns a compound
+// [component[i]]) all at once, or else one at a time, grouped by
+// overlapping boxes, each step checked and retried (fuzzy, healed) within
+// `deadline`; when `meshes_take_over` (the union of meshes unites what is
+// left) and the union of all at once ran out of its time, none is tried one
+// at a time: such a fuse takes seconds a pair. Returns a compound
 // of the united groups and of the solids left out; sets each component's
 // route, info.not_united, info.solids_fused and info.fused.
 TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::vector<int>& component, double tol,
-                          const Deadline& deadline, const Follow& follow, const ProgressSink& progress,
-                          Preparation& info);
+                          const Deadline& deadline, bool meshes_take_over, const Follow& follow,
+                          const ProgressSink& progress, Preparation& info);
 
 // The coordinate planes through 0 that bound the model's box (within
 // `tolerance`): where the root of a half model lies.

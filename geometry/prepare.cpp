@@ -931,7 +931,8 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   if (options.describe_only) {
     info.union_skipped = true;
   } else if (solids.size() >= 2) {
-    const TopoDS_Shape united = unite_solids(solids, solid_component, tol, deadline, follow, options.progress, info);
+    const TopoDS_Shape united =
+        unite_solids(solids, solid_component, tol, deadline, !options.domain.active(), follow, options.progress, info);
     solids.clear();
     for (TopExp_Explorer ex(united, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
   } else if (solids.size() == 1) {

@@ -31,7 +31,9 @@
 
 #include <algorithm>
 #include <map>
+#include <iomanip>
 #include <numeric>
+#include <sstream>
 
 #include "geometry/deadline.h"
 #include "geometry/occt_model.h"
@@ -204,8 +206,8 @@ Bnd_Box box_of(const TopoDS_Shape& s, double gap) {
 }  // namespace
 
 TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::vector<int>& component, double tol,
-                          const Deadline& deadline, const Follow& follow, const ProgressSink& progress,
-                          Preparation& info) {
+                          const Deadline& deadline, bool meshes_take_over, const Follow& follow,
+                          const ProgressSink& progress, Preparation& info) {
   // Largest first: the fuselage, then what is attached to it.
   std::vector<Bnd_Box> box(solids.size());
   std::vector<size_t> order(solids.size());
@@ -220,13 +222,26 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
   // All at once first (one fuse is cheaper than a chain of them), within
   // three quarters of the budget; one at a time when that fails.
   if (progress) progress("uniting " + std::to_string(solids.size()) + " components at once");
-  if (FuseStep all = fuse(solids, 0.0, 0.75 * deadline.remaining()); !all.shape.IsNull()) {
+  const double allotted = 0.75 * deadline.remaining();
+  const Deadline all_at_once(allotted);
+  if (FuseStep all = fuse(solids, 0.0, allotted); !all.shape.IsNull()) {
     for (const auto& [from, to] : all.pieces) follow(from, to);
     for (int k : component) info.components[k].route = "B-rep union";
     info.pocket_faces_removed = all.pocket_faces;
     info.solids_fused = static_cast<int>(solids.size());
     info.fused = true;
     return all.shape;
+  }
+  if (meshes_take_over && all_at_once.remaining() < 0.05 * allotted) {
+    for (size_t i = 0; i < solids.size(); ++i) {
+      std::ostringstream why;
+      why << "not united: the B-rep union of all " << solids.size() << " components did not end within "
+          << std::setprecision(3) << allotted << " s";
+      info.components[component[i]].route = why.str();
+      info.not_united.push_back(component[i] + 1);
+      builder.Add(out, solids[i]);
+    }
+    return out;
   }
   std::vector<bool> done(solids.size(), false);
   size_t left = solids.size();
