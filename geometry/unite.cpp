@@ -232,7 +232,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
     info.fused = true;
     return all.shape;
   }
-  if (meshes_take_over && all_at_once.remaining() < 0.05 * allotted) {
+  if (meshes_take_over && all_at_once.remaining() <= 0.05 * allotted) {
     for (size_t i = 0; i < solids.size(); ++i) {
       std::ostringstream why;
       why << "not united: the B-rep union of all " << solids.size() << " components did not end within "
