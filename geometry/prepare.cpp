@@ -713,15 +713,16 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 }
 
 // Without a flow domain, the union of meshes takes over what the B-rep union
-// leaves (mesher/mesh_union.h) in seconds, and closed: 2 s per component
-// within 10 to 14 s, so a fuse that would take a minute (OpenVSP's B-splines
+// leaves (mesher/mesh_union.h) in seconds, and closed: 3 s per component
+// within 16 to 20 s, so a fuse that would take a minute (OpenVSP's B-splines
 // of hundreds of spans, every edge against every face it reaches) is not
-// waited for. Inside a flow domain nothing takes over: 4 s per component, at
+// waited for, and one that takes 6 s idle (the F-16, the manta) still ends
+// on a machine twice as loaded. Inside a flow domain nothing takes over: 4 s per component, at
 // least 12 s.
 double default_budget(const LoadOptions& o, size_t components) {
   if (o.union_seconds > 0) return o.union_seconds;
   const double n = static_cast<double>(components);
-  return o.domain.active() ? std::max(12.0, 4.0 * n) : std::clamp(2.0 * n, 10.0, 14.0);
+  return o.domain.active() ? std::max(12.0, 4.0 * n) : std::clamp(3.0 * n, 16.0, 20.0);
 }
 
 }  // namespace

@@ -282,8 +282,8 @@ TEST_CASE("the aircraft under a coarse and a fine deviation bound: valid and clo
     const double diag = model.info().diagonal();
     for (double rel : {1e-3, 1e-4}) {
       INFO(file << " at --deviation " << rel << " of the diagonal");
-      const nlohmann::json j = run_and_report(test::model_path(file) + " --deviation " + std::to_string(rel * diag) +
-                                                  " -o " + scratch("dev.vtu"),
+      const nlohmann::json j = run_and_report(test::model_path(file) + " --union-seconds 120 --deviation " +
+                                                  std::to_string(rel * diag) + " -o " + scratch("dev.vtu"),
                                               "dev");
       const auto& m = j["mesh"];
       INFO(m.dump());
