@@ -717,8 +717,8 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 // within 16 to 20 s, so a fuse that would take a minute (OpenVSP's B-splines
 // of hundreds of spans, every edge against every face it reaches) is not
 // waited for, and one that takes 6 s idle (the F-16, the manta) still ends
-// on a machine twice as loaded. Inside a flow domain nothing takes over: 4 s per component, at
-// least 12 s.
+// on a machine twice as loaded. Inside a flow domain nothing takes over:
+// 4 s per component, at least 12 s.
 double default_budget(const LoadOptions& o, size_t components) {
   if (o.union_seconds > 0) return o.union_seconds;
   const double n = static_cast<double>(components);

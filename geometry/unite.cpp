@@ -220,7 +220,8 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
   BRep_Builder builder;
   builder.MakeCompound(out);
   // All at once first (one fuse is cheaper than a chain of them), within
-  // three quarters of the budget; one at a time when that fails.
+  // three quarters of the budget; one at a time when that fails, unless it
+  // ran out of time and the union of meshes takes what is left.
   if (progress) progress("uniting " + std::to_string(solids.size()) + " components at once");
   const double allotted = 0.75 * deadline.remaining();
   const Deadline all_at_once(allotted);
