@@ -535,10 +535,7 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       }
       // A closed shape stays closed (an open one gains free curves where its
       // free boundary is divided).
-      if (!loose &&
-          ((count_free_curves(shape) == 0 && count_free_curves(result) != 0) ||
-           !new_faces_valid(shape, result)))
-        return shape;
+      if (!loose && !step_keeps_shape_valid(shape, result)) return shape;
       BRep_Builder b;
       TopoDS_Compound loose_faces;
       b.MakeCompound(loose_faces);

@@ -54,7 +54,8 @@ int count_free_curves(const TopoDS_Shape& shape) {
   return free;
 }
 
-bool new_faces_valid(const TopoDS_Shape& before, const TopoDS_Shape& after) {
+bool step_keeps_shape_valid(const TopoDS_Shape& before, const TopoDS_Shape& after) {
+  if (count_free_curves(before) == 0 && count_free_curves(after) != 0) return false;
   TopTools_IndexedMapOfShape old;
   TopExp::MapShapes(before, TopAbs_FACE, old);
   TopoDS_Compound fresh;

@@ -82,11 +82,13 @@ CadFile sew_shape(const TopoDS_Shape& shape, ModelInfo info, const LoadOptions& 
 // Curves bounding exactly one face side (seams and degenerate curves excluded).
 int count_free_curves(const TopoDS_Shape& shape);
 
-// Whether the faces `after` has and `before` has not (those a step made or
-// changed: its pieces, and neighbours whose edges it split) pass BRepCheck.
-// A step changes no other face, and checking every face again costs the
-// wire self-intersection test of every B-spline pcurve of the model.
-bool new_faces_valid(const TopoDS_Shape& before, const TopoDS_Shape& after);
+// Whether a preparation step that turned `before` into `after` may be kept:
+// a closed shape stays closed, and the faces `after` has and `before` has
+// not (those the step made or changed: its pieces, and neighbours whose
+// edges it split) pass BRepCheck. A step changes no other face, and checking
+// every face again costs the wire self-intersection test of every B-spline
+// pcurve of the model.
+bool step_keeps_shape_valid(const TopoDS_Shape& before, const TopoDS_Shape& after);
 
 // The solid a closed shell bounds, oriented outward; null when it cannot be made.
 TopoDS_Solid solid_from_shell(const TopoDS_Shell& shell);

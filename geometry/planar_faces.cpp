@@ -182,9 +182,7 @@ TopoDS_Shape merge_coplanar(const TopoDS_Shape& shape, const TopTools_DataMapOfS
   } catch (const Standard_Failure&) {
     return shape;
   }
-  if (result.IsNull() || !new_faces_valid(shape, result) ||
-      (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
-    return shape;
+  if (result.IsNull() || !step_keeps_shape_valid(shape, result)) return shape;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next())
     for (const auto& g : unify.History()->Modified(ex.Current()))
       if (g.ShapeType() == TopAbs_FACE) follow(TopoDS::Face(ex.Current()), TopoDS::Face(g));
@@ -258,9 +256,7 @@ TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_
   if (shape.IsNull()) return shape;
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> replaced;
   const TopoDS_Shape result = rebuild_flat(shape, tol, false, true, replaced);
-  if (replaced.empty() || !new_faces_valid(shape, result) ||
-      (count_free_curves(shape) == 0 && count_free_curves(result) != 0))
-    return shape;
+  if (replaced.empty() || !step_keeps_shape_valid(shape, result)) return shape;
   TopTools_MapOfShape on_planes;
   for (const auto& [f, g] : replaced) follow(f, g), on_planes.Add(g);
   rebuilt = static_cast<int>(replaced.size());

@@ -719,10 +719,12 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 // waited for, and one that takes 6 s idle (the F-16, the manta) still ends
 // on a machine twice as loaded. Inside a flow domain nothing takes over:
 // 4 s per component, at least 12 s.
+bool meshes_take_over(const LoadOptions& o) { return !o.domain.active(); }
+
 double default_budget(const LoadOptions& o, size_t components) {
   if (o.union_seconds > 0) return o.union_seconds;
   const double n = static_cast<double>(components);
-  return o.domain.active() ? std::max(12.0, 4.0 * n) : std::clamp(3.0 * n, 16.0, 20.0);
+  return meshes_take_over(o) ? std::clamp(3.0 * n, 16.0, 20.0) : std::max(12.0, 4.0 * n);
 }
 
 }  // namespace
@@ -933,7 +935,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     info.union_skipped = true;
   } else if (solids.size() >= 2) {
     const TopoDS_Shape united =
-        unite_solids(solids, solid_component, tol, deadline, !options.domain.active(), follow, options.progress, info);
+        unite_solids(solids, solid_component, tol, deadline, meshes_take_over(options), follow, options.progress, info);
     solids.clear();
     for (TopExp_Explorer ex(united, TopAbs_SOLID); ex.More(); ex.Next()) solids.push_back(ex.Current());
   } else if (solids.size() == 1) {

@@ -234,10 +234,10 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
     return all.shape;
   }
   if (meshes_take_over && all_at_once.remaining() <= 0.05 * allotted) {
+    std::ostringstream why;
+    why << "not united: the B-rep union of all " << solids.size() << " components did not end within "
+        << std::setprecision(3) << allotted << " s";
     for (size_t i = 0; i < solids.size(); ++i) {
-      std::ostringstream why;
-      why << "not united: the B-rep union of all " << solids.size() << " components did not end within "
-          << std::setprecision(3) << allotted << " s";
       info.components[component[i]].route = why.str();
       info.not_united.push_back(component[i] + 1);
       builder.Add(out, solids[i]);
