@@ -16,13 +16,14 @@ namespace sizemesh {
 namespace {
 
 // A step as the child hands it back: its failure (a line, empty on success),
+// how it ran out of time (a line, empty when it did not),
 // the pocket faces, the pieces as (input face, result face) indices into the
 // faces of `parts` and of the result, and the result shape (BinTools, exact).
 bool write_step(const std::string& path, const FuseStep& s, const TopTools_IndexedMapOfShape& inputs) {
   std::ofstream out(path, std::ios::binary);
   TopTools_IndexedMapOfShape result;
   if (!s.shape.IsNull()) TopExp::MapShapes(s.shape, TopAbs_FACE, result);
-  out << s.failure << "\n" << s.pocket_faces << " " << s.pieces.size() << "\n";
+  out << s.failure << "\n" << s.out_of_time << "\n" << s.pocket_faces << " " << s.pieces.size() << "\n";
   for (const auto& [from, to] : s.pieces) out << inputs.FindIndex(from) << " " << result.FindIndex(to) << "\n";
   out << (s.shape.IsNull() ? 0 : 1) << "\n";
   if (!s.shape.IsNull()) BinTools::Write(s.shape, out);
@@ -33,6 +34,7 @@ FuseStep read_step(const std::string& path, const TopTools_IndexedMapOfShape& in
   FuseStep s;
   std::ifstream in(path, std::ios::binary);
   std::getline(in, s.failure);
+  std::getline(in, s.out_of_time);
   size_t n = 0;
   in >> s.pocket_faces >> n;
   std::vector<std::pair<int, int>> pairs(n);
@@ -83,7 +85,10 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
         out.failure = std::string("the general fuse's result could not be read back: ") + e.GetMessageString();
       }
       break;
-    case ChildOutcome::TimedOut: out.failure = "the general fuse ran out of time and was stopped"; break;
+    case ChildOutcome::TimedOut:
+      out.out_of_time = "did not end within its time and was stopped";
+      out.failure = "the general fuse " + out.out_of_time;
+      break;
     case ChildOutcome::Failed: out.failure = "the general fuse crashed"; break;
     case ChildOutcome::NoChild: out = here(true); break;
   }

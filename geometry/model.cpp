@@ -413,6 +413,8 @@ void Model::record_mesh_union(int component, const std::string& failure) {
     c.route += "; at mesh level: " + failure;
     return;
   }
+  const std::string was = "not united: ";
+  if (c.route.compare(0, was.size(), was) == 0) c.brep_failure = c.route.substr(was.size());
   c.route = "mesh-level union";
   p.not_united.erase(std::remove(p.not_united.begin(), p.not_united.end(), component), p.not_united.end());
   ++p.united_at_mesh_level;

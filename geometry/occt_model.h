@@ -106,7 +106,8 @@ struct FuseStep {
   TopoDS_Shape shape;
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> pieces;
   std::string failure;
-  int pocket_faces = 0;  // faces of enclosed air pockets dropped
+  std::string out_of_time;  // when it was stopped for time, how ("did not end within 12.0 s"); else empty
+  int pocket_faces = 0;     // faces of enclosed air pockets dropped
 };
 
 // geometry/isolated_fuse.cpp: `here(parallel)` (a fuse of `parts`) run in a

@@ -32,6 +32,9 @@ struct Component {
   // with the rest's, mesher/mesh_union.h), or "not united: <why>" (meshed
   // where it lies; the run ends with exit 3).
   std::string route;
+  // Why the B-rep union did not take it, when the union of meshes then did
+  // (the route it had before: "not united: <why>", without its first words).
+  std::string brep_failure;
   int faces_removed = 0;  // duplicate or internal faces taken out by the repair
   int caps_added = 0;     // planar faces closing its flat open loops (a tip, a root)
   std::vector<int> face_ids;  // its faces' ids in the sewn model (Model::source_face)

@@ -127,7 +127,8 @@ FuseStep fuse_here(const std::vector<TopoDS_Shape>& parts, double fuzzy, double 
     Handle(DeadlineIndicator) stop = new DeadlineIndicator(Deadline(seconds).end());
     cells.Perform(stop->Start());
     if (cells.HasErrors()) {
-      out.failure = stop->UserBreak() ? "the general fuse ran out of time" : "the general fuse failed";
+      out.out_of_time = stop->why();
+      out.failure = "the general fuse " + (out.out_of_time.empty() ? std::string("failed") : out.out_of_time);
       return out;
     }
     cells.AddAllToResult(1, false);
@@ -221,11 +222,13 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
   builder.MakeCompound(out);
   // All at once first (one fuse is cheaper than a chain of them), within
   // three quarters of the budget; one at a time when that fails, unless it
-  // ran out of time and the union of meshes takes what is left.
+  // ran out of time (or was stopped as on course to) and the union of meshes
+  // takes what is left.
   if (progress) progress("uniting " + std::to_string(solids.size()) + " components at once");
   const double allotted = 0.75 * deadline.remaining();
   const Deadline all_at_once(allotted);
-  if (FuseStep all = fuse(solids, 0.0, allotted); !all.shape.IsNull()) {
+  FuseStep all = fuse(solids, 0.0, allotted);
+  if (!all.shape.IsNull()) {
     for (const auto& [from, to] : all.pieces) follow(from, to);
     for (int k : component) info.components[k].route = "B-rep union";
     info.pocket_faces_removed = all.pocket_faces;
@@ -233,10 +236,13 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
     info.fused = true;
     return all.shape;
   }
-  if (meshes_take_over && all_at_once.remaining() <= 0.05 * allotted) {
+  if (meshes_take_over && (!all.out_of_time.empty() || all_at_once.remaining() <= 0.05 * allotted)) {
     std::ostringstream why;
-    why << "not united: the B-rep union of all " << solids.size() << " components did not end within "
-        << std::setprecision(3) << allotted << " s";
+    why << "not united: the B-rep union of all " << solids.size() << " components ";
+    if (all.out_of_time.empty())
+      why << "did not end within " << std::setprecision(3) << allotted << " s";
+    else
+      why << all.out_of_time;
     for (size_t i = 0; i < solids.size(); ++i) {
       info.components[component[i]].route = why.str();
       info.not_united.push_back(component[i] + 1);

@@ -29,6 +29,7 @@ nlohmann::json report_json(const RunReport& r) {
                           {"bbox_max", {c.bbox_max.x(), c.bbox_max.y(), c.bbox_max.z()}},
                           {"role", c.role},
                           {"route", c.route},
+                          {"brep_failure", c.brep_failure},
                           {"caps_added", c.caps_added},
                           {"faces_removed", c.faces_removed}});
   j["preparation"] = {{"components", components},
