@@ -26,6 +26,7 @@
 #include <GeomLib_IsPlanarSurface.hxx>
 #include <gp_Pln.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
@@ -48,11 +49,14 @@
 #include <TopoDS_Solid.hxx>
 
 #include <algorithm>
+#include <atomic>
 #include <memory>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
+
+#include <tbb/parallel_for.h>
 
 #include "geometry/deadline.h"
 #include "geometry/occt_model.h"
@@ -94,11 +98,28 @@ struct Sewn {
   }
 };
 
-Sewn sew(const FaceList& faces, double tol) {
+// Says "stop" once `flag` is set: a sewing no one waits for any more.
+class FlagIndicator : public Message_ProgressIndicator {
+ public:
+  explicit FlagIndicator(const std::atomic<bool>& flag) : flag_(flag) {}
+  Standard_Boolean UserBreak() override { return flag_.load(); }
+  void Show(const Message_ProgressScope&, const Standard_Boolean) override {}
+
+ private:
+  const std::atomic<bool>& flag_;
+};
+
+// The faces sewn at `tol`; abandoned (its result of no use) once `stop` is set.
+Sewn sew(const FaceList& faces, double tol, const std::atomic<bool>* stop = nullptr) {
   Sewn s;
   s.sewing = std::make_shared<BRepBuilderAPI_Sewing>(tol);
   for (const auto& f : faces) s.sewing->Add(f);
-  s.sewing->Perform();
+  if (stop) {
+    Handle(FlagIndicator) indicator = new FlagIndicator(*stop);
+    s.sewing->Perform(indicator->Start());
+  } else {
+    s.sewing->Perform();
+  }
   s.shape = s.sewing->SewedShape();
   if (s.shape.IsNull()) s.shape = compound_of(faces);
   else mend_sewn_edges(s.shape, tol);
@@ -506,17 +527,19 @@ FaceList joined(FaceList faces, const FaceList& more) {
 // Coincident faces or groups of `faces` taken out of `current` (sewn as `now` at
 // tolerance t): both (the caps between two halves of one body) when that
 // does not open the component further, else one of them (a duplicate).
-// Returns the faces taken out.
-int drop_coincident(const FaceList& faces, const Coincident& pairs, double t, FaceList& current, Sewn& now) {
+// Returns the faces taken out. Given up once `stop` is set.
+int drop_coincident(const FaceList& faces, const Coincident& pairs, double t, FaceList& current, Sewn& now,
+                    const std::atomic<bool>* stop = nullptr) {
   int dropped = 0;
   for (const auto& [one, other] : pairs) {
+    if (stop && *stop) break;
     FaceGroup both = one;
     both.insert(both.end(), other.begin(), other.end());
     for (const FaceGroup& drop : {both, other}) {
       FaceList trial;
       for (const auto& f : current)
         if (std::none_of(drop.begin(), drop.end(), [&](int d) { return f.IsSame(faces[d]); })) trial.push_back(f);
-      Sewn s = sew(trial, t);
+      Sewn s = sew(trial, t, stop);
       if (s.free_curves <= now.free_curves) {
         dropped += static_cast<int>(drop.size());
         current = trial;
@@ -538,26 +561,52 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   // (two halves' root caps, back to back) are out: kept, they would lie
   // inside the closed body.
   // The rest starts from the sewing at `tol` (the ladder's first rung).
-  FaceList current;
-  Sewn now;
-  for (double t : {tol, 10 * tol, 100 * tol}) {
-    if (t > 1e-3 * component_diagonal && t > tol) break;
-    FaceList trial = faces;
-    Sewn s = sew(trial, t);
-    const int dropped = pairs.empty() ? 0 : drop_coincident(faces, pairs, t, trial, s);
-    if (s.free_curves == 0 && TopExp_Explorer(s.shape, TopAbs_SHELL).More()) {
-      r.closed = s.shape;
-      r.sewn = s;
-      r.kept = trial;
-      r.duplicates = dropped;
-      return r;
+  // The rungs are sewn in parallel, each but the first on a copy of the
+  // faces (sewing widens the tolerances of what it sews), the later ones
+  // given up once the first closes it; a later rung that closes it is sewn
+  // again on the faces themselves, after the first, as it would have been
+  // in turn.
+  std::vector<double> rungs;
+  for (double t : {tol, 10 * tol, 100 * tol})
+    if (t == tol || t <= 1e-3 * component_diagonal) rungs.push_back(t);
+  struct Rung {
+    FaceList trial;
+    Sewn sewn;
+    int dropped = 0;
+    bool closes = false;
+  };
+  std::atomic<bool> first_closes{false};
+  const auto climb = [&](double t, const FaceList& own, const std::atomic<bool>* stop) {
+    Rung r{own, sew(own, t, stop)};
+    r.dropped = pairs.empty() ? 0 : drop_coincident(own, pairs, t, r.trial, r.sewn, stop);
+    r.closes = r.sewn.free_curves == 0 && TopExp_Explorer(r.sewn.shape, TopAbs_SHELL).More();
+    return r;
+  };
+  std::vector<Rung> climbed(rungs.size());
+  tbb::parallel_for(size_t(0), rungs.size(), [&](size_t i) {
+    if (i == 0) {
+      climbed[i] = climb(rungs[i], faces, nullptr);
+      if (climbed[i].closes) first_closes = true;
+      return;
     }
-    if (t == tol) {
-      current = trial;
-      now = s;
-      r.duplicates = dropped;
-    }
+    BRepBuilderAPI_Copy copy(compound_of(faces));
+    FaceList own;
+    for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
+    climbed[i] = climb(rungs[i], own, &first_closes);
+  });
+  for (size_t i = 0; i < rungs.size(); ++i) {
+    if (!climbed[i].closes) continue;
+    Rung c = i == 0 ? climbed[0] : climb(rungs[i], faces, nullptr);
+    if (!c.closes) continue;
+    r.closed = c.sewn.shape;
+    r.sewn = c.sewn;
+    r.kept = c.trial;
+    r.duplicates = c.dropped;
+    return r;
   }
+  FaceList current = climbed[0].trial;
+  Sewn now = climbed[0].sewn;
+  r.duplicates = climbed[0].dropped;
   // Faces on free curves, best first, while each removal closes more. What
   // is taken out stays under half the component's area: an internal plane or
   // a cap, never the skin that bounds the body.
@@ -567,34 +616,49 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   for (int round = 0; round < kMaxRounds && now.free_curves > 0; ++round) {
     FaceList cand = faces_on_free_curves(current, now);
     if (cand.size() > static_cast<size_t>(kMaxCandidates)) cand.resize(kMaxCandidates);
-    int best = -1;
-    Sewn best_sewn;
-    double best_volume = -1;  // of the closed result, when the best closes it
     const std::vector<FaceList> options = removal_options(cand, now);
-    for (size_t c = 0; c < options.size(); ++c) {
-      FaceList trial;
+    // Each option's trial, sewn on a copy of what it keeps, all in parallel:
+    // sewing widens the tolerances of the curves and vertices it sews, so
+    // trials on the faces themselves would change each other.
+    struct Trial {
+      FaceList faces;
+      int free_curves = -1;  // -1: not tried
+      double volume = -1;    // of the closed result, when it closes
+    };
+    std::vector<Trial> trials(options.size());
+    tbb::parallel_for(size_t(0), options.size(), [&](size_t c) {
       double out = 0;
       for (const auto& f : options[c]) out += face_area(f);
+      FaceList trial;
       for (const auto& f : current)
         if (std::none_of(options[c].begin(), options[c].end(), [&](const TopoDS_Face& g) { return g.IsSame(f); }))
           trial.push_back(f);
-      if (trial.empty() || area_out + out > 0.5 * area_left) continue;
-      Sewn s = sew(trial, tol);
-      const int to_beat = best < 0 ? now.free_curves : best_sewn.free_curves;
+      if (trial.empty() || area_out + out > 0.5 * area_left) return;
+      const Sewn s = sew(faces_of(BRepBuilderAPI_Copy(compound_of(trial)).Shape()), tol);
+      trials[c].faces = std::move(trial);
+      trials[c].free_curves = s.free_curves;
+      if (s.free_curves == 0) {
+        const std::vector<TopoDS_Shape> solids = solids_of(s.shape);
+        if (!solids.empty()) trials[c].volume = volume_of(solids);
+      }
+    });
+    int best = -1;
+    for (size_t c = 0; c < options.size(); ++c) {
+      const Trial& t = trials[c];
+      if (t.free_curves < 0) continue;
+      const int to_beat = best < 0 ? now.free_curves : trials[best].free_curves;
       // Removals that close it alike (a wing's upper skin, lower skin and
       // planform plane all meet on the leading and trailing edges: any two
       // close): the one that encloses the most keeps the skins, so what is
       // taken out is the plane inside them.
-      double volume = -1;
-      if (s.free_curves == 0) {
-        const std::vector<TopoDS_Shape> solids = solids_of(s.shape);
-        if (!solids.empty()) volume = volume_of(solids);
-      }
-      if (s.free_curves < to_beat || (best >= 0 && s.free_curves == to_beat && volume > best_volume)) {
+      if (t.free_curves < to_beat || (best >= 0 && t.free_curves == to_beat && t.volume > trials[best].volume))
         best = static_cast<int>(c);
-        best_sewn = s;
-        best_volume = volume;
-      }
+    }
+    // The best sewn again on the faces themselves: the sewing the rest goes on from.
+    Sewn best_sewn;
+    if (best >= 0) {
+      best_sewn = sew(trials[best].faces, tol);
+      if (best_sewn.free_curves >= now.free_curves) best = -1;
     }
     if (best < 0) break;
     for (const auto& g : options[best]) {
