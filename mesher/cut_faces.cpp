@@ -259,6 +259,12 @@ bool simple_loops(const FaceMesh& fm) {
 // the left in uv) with the substituted chains' new nodes in place of their
 // old ones. Empty when a region's boundary cannot be walked (a pole, a
 // pinched corner) or holds no single outer loop.
+// Two region boundaries alike: the same nodes (uv, shared node, place) in the same loops.
+bool same_boundary(const FaceMesh& a, const FaceMesh& b) {
+  return a.face == b.face && a.global == b.global && a.pole == b.pole && a.loops == b.loops && a.uv == b.uv &&
+         a.shared_xyz == b.shared_xyz && a.tris == b.tris;
+}
+
 struct Region {
   FaceMesh boundary;
   bool flip = false;  // the face's triangles run clockwise in uv
@@ -507,6 +513,10 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   const long long crossing_before = find_self_intersections(s, 0).pairs;
   std::set<int> kept;        // faces left with their triangles
   std::set<size_t> frozen;   // chains that keep their nodes
+  // Regions meshed in an earlier round, by face: the boundary given and the
+  // mesh made. A round meshes again only the regions whose boundary changed
+  // (those next to a face that now keeps its triangles).
+  std::map<int, std::vector<std::pair<FaceMesh, FaceMesh>>> meshed_before;
   for (int round = 0; round < kRounds; ++round) {
     // Chains substituted: both faces meshed again. A face whose boundary
     // cannot be walked keeps its triangles; that changes which chains are
@@ -546,10 +556,23 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     for (auto& [f, list] : regions)
       for (Region& r : list) all.push_back(&r);
     std::vector<char> meshed(all.size(), 0);
+    std::vector<const FaceMesh*> earlier(all.size(), nullptr);
+    for (size_t i = 0; i < all.size(); ++i)
+      for (const auto& [given, made] : meshed_before[all[i]->boundary.face])
+        if (same_boundary(given, all[i]->boundary)) earlier[i] = &made;
+    std::vector<FaceMesh> given(all.size());
     tbb::parallel_for(size_t(0), all.size(), [&](size_t i) {
+      if (earlier[i]) {
+        all[i]->boundary = *earlier[i];
+        meshed[i] = 1;
+        return;
+      }
+      given[i] = all[i]->boundary;
       std::string why;
       meshed[i] = mesh_within(g, h, all[i]->boundary, o, why);
     });
+    for (size_t i = 0; i < all.size(); ++i)
+      if (meshed[i] && !earlier[i]) meshed_before[all[i]->boundary.face].emplace_back(std::move(given[i]), all[i]->boundary);
     bool failed = false;
     for (size_t i = 0; i < all.size(); ++i)
       if (!meshed[i]) kept.insert(all[i]->boundary.face), failed = true;
