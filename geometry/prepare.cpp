@@ -50,13 +50,16 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
 
-#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "geometry/deadline.h"
 #include "geometry/occt_model.h"
@@ -97,6 +100,33 @@ struct Sewn {
     return sewing->IsModified(f) ? TopoDS::Face(sewing->Modified(f)) : f;
   }
 };
+
+// f(0) .. f(n-1) on threads made for them, as many at once as the task
+// arena allows, never on the calling thread: that thread's heap then sees
+// the same allocations on every run whatever the timing, so the shapes it
+// builds get their addresses in the same order, and OpenCASCADE's maps
+// hashed by address iterate alike.
+template <class F>
+void off_this_thread(size_t n, const F& f) {
+  const size_t k = std::min<size_t>(n, static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
+  std::atomic<size_t> next{0};
+  std::mutex guard;
+  std::exception_ptr failure;
+  std::vector<std::thread> pool;
+  for (size_t t = 0; t < k; ++t)
+    pool.emplace_back([&] {
+      for (size_t i; (i = next++) < n;) {
+        try {
+          f(i);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(guard);
+          if (!failure) failure = std::current_exception();
+        }
+      }
+    });
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
 
 // Says "stop" once `flag` is set: a sewing no one waits for any more.
 class FlagIndicator : public Message_ProgressIndicator {
@@ -561,7 +591,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   // (two halves' root caps, back to back) are out: kept, they would lie
   // inside the closed body.
   // The rest starts from the sewing at `tol` (the ladder's first rung).
-  // The rungs are sewn in parallel, each but the first on a copy of the
+  // The rungs are sewn in parallel, the first on this thread, each other on a copy of the
   // faces (sewing widens the tolerances of what it sews), the later ones
   // given up once the first closes it; a later rung that closes it is sewn
   // again on the faces themselves, after the first, as it would have been
@@ -583,17 +613,38 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     return r;
   };
   std::vector<Rung> climbed(rungs.size());
-  tbb::parallel_for(size_t(0), rungs.size(), [&](size_t i) {
-    if (i == 0) {
-      climbed[i] = climb(rungs[i], faces, nullptr);
-      if (climbed[i].closes) first_closes = true;
-      return;
+  const auto later_rungs = [&] {
+    off_this_thread(rungs.size() - 1, [&](size_t j) {
+      BRepBuilderAPI_Copy copy(compound_of(faces));
+      FaceList own;
+      for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
+      climbed[j + 1] = climb(rungs[j + 1], own, &first_closes);
+    });
+  };
+  if (tbb::this_task_arena::max_concurrency() > 1) {
+    std::exception_ptr failure;
+    std::thread beside([&] {
+      try {
+        later_rungs();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    try {
+      climbed[0] = climb(rungs[0], faces, nullptr);
+    } catch (...) {
+      first_closes = true;
+      beside.join();
+      throw;
     }
-    BRepBuilderAPI_Copy copy(compound_of(faces));
-    FaceList own;
-    for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
-    climbed[i] = climb(rungs[i], own, &first_closes);
-  });
+    if (climbed[0].closes) first_closes = true;
+    beside.join();
+    if (failure) std::rethrow_exception(failure);
+  } else {
+    climbed[0] = climb(rungs[0], faces, nullptr);
+    if (climbed[0].closes) first_closes = true;
+    later_rungs();
+  }
   for (size_t i = 0; i < rungs.size(); ++i) {
     if (!climbed[i].closes) continue;
     Rung c = i == 0 ? climbed[0] : climb(rungs[i], faces, nullptr);
@@ -626,7 +677,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       double volume = -1;    // of the closed result, when it closes
     };
     std::vector<Trial> trials(options.size());
-    tbb::parallel_for(size_t(0), options.size(), [&](size_t c) {
+    off_this_thread(options.size(), [&](size_t c) {
       double out = 0;
       for (const auto& f : options[c]) out += face_area(f);
       FaceList trial;
