@@ -138,6 +138,12 @@ FuseStep fuse_here(const std::vector<TopoDS_Shape>& parts, double fuzzy, double 
       out.failure = "the general fuse gave nothing";
       return out;
     }
+    // A free curve is a face missing, which no healing below adds: counted
+    // first, it spares a failing union its whole-shape check and healing.
+    if (const int free = count_free_curves(shape); free != 0) {
+      out.failure = "the union has " + std::to_string(free) + " free curves";
+      return out;
+    }
     // Faces of the result a healing replaced (orientation within a shell, wires).
     Handle(ShapeBuild_ReShape) fixes;
     if (!invalidity(shape).empty()) {
