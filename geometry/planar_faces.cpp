@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "geometry/occt_model.h"
+#include "geometry/off_thread.h"
 
 namespace sizemesh {
 namespace {
@@ -127,7 +128,8 @@ bool collapses(const TopoDS_Face& f, bool borders) {
 }
 
 // Face f (taken forward) rebuilt on `plane` with its edges, degenerate ones
-// and point-like ones left out (a point on a plane is no curve); null when the result is invalid.
+// and point-like ones left out (a point on a plane is no curve); checked by
+// the caller.
 TopoDS_Face on_plane(const TopoDS_Face& f, const Handle(Geom_Plane)& plane, double tol) {
   BRep_Builder b;
   TopoDS_Face out;
@@ -147,7 +149,6 @@ TopoDS_Face on_plane(const TopoDS_Face& f, const Handle(Geom_Plane)& plane, doub
   for (TopExp_Explorer e(out, TopAbs_EDGE); e.More(); e.Next()) edges.Append(e.Current());
   BRepLib::BuildPCurveForEdgesOnPlane(edges, out);
   BRepLib::SameParameter(out, tol);
-  if (!BRepCheck_Analyzer(out).IsValid()) return {};
   return out;
 }
 
@@ -208,9 +209,11 @@ bool has_pinched_side(const TopoDS_Face& f, double tol) {
 TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders, bool pinched,
                           std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& replaced) {
   Handle(BRepTools_ReShape) reshape = new BRepTools_ReShape;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Face>> candidates;
+  TopTools_MapOfShape seen;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
     const TopoDS_Face f = TopoDS::Face(ex.Current().Oriented(TopAbs_FORWARD));
-    if (reshape->IsRecorded(f)) continue;
+    if (!seen.Add(f)) continue;
     try {
       const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
       if (s.IsNull() || BRepAdaptor_Surface(f, false).GetType() == GeomAbs_Plane) continue;
@@ -232,11 +235,26 @@ TopoDS_Shape rebuild_flat(const TopoDS_Shape& shape, double tol, bool borders, b
       if (pln.Axis().Direction().Dot(n) < 0) pln.SetAxis(pln.Axis().Reversed());
       const TopoDS_Face g = on_plane(f, new Geom_Plane(pln), tol);
       if (g.IsNull()) continue;
-      reshape->Replace(f, g);
-      replaced.emplace_back(f, g);
+      candidates.emplace_back(f, g);
     } catch (const Standard_Failure&) {
       continue;  // the face keeps its surface
     }
+  }
+  // Each rebuilt face checked alone (BRepCheck's wire self-intersection test
+  // of B-spline curves on the plane is the costly part), in parallel, off
+  // this thread (geometry/off_thread.h).
+  std::vector<char> valid(candidates.size(), 0);
+  off_this_thread(candidates.size(), [&](size_t i) {
+    try {
+      valid[i] = BRepCheck_Analyzer(candidates[i].second).IsValid();
+    } catch (const Standard_Failure&) {
+      valid[i] = 0;
+    }
+  });
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (!valid[i]) continue;
+    reshape->Replace(candidates[i].first, candidates[i].second);
+    replaced.push_back(candidates[i]);
   }
   if (replaced.empty()) return shape;
   try {

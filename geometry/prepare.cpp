@@ -50,18 +50,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <memory>
-#include <mutex>
-#include <thread>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
+#include <thread>
 
 #include <tbb/task_arena.h>
 
 #include "geometry/deadline.h"
+#include "geometry/off_thread.h"
 #include "geometry/occt_model.h"
 
 namespace sizemesh {
@@ -100,33 +98,6 @@ struct Sewn {
     return sewing->IsModified(f) ? TopoDS::Face(sewing->Modified(f)) : f;
   }
 };
-
-// f(0) .. f(n-1) on threads made for them, as many at once as the task
-// arena allows, never on the calling thread: that thread's heap then sees
-// the same allocations on every run whatever the timing, so the shapes it
-// builds get their addresses in the same order, and OpenCASCADE's maps
-// hashed by address iterate alike.
-template <class F>
-void off_this_thread(size_t n, const F& f) {
-  const size_t k = std::min<size_t>(n, static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
-  std::atomic<size_t> next{0};
-  std::mutex guard;
-  std::exception_ptr failure;
-  std::vector<std::thread> pool;
-  for (size_t t = 0; t < k; ++t)
-    pool.emplace_back([&] {
-      for (size_t i; (i = next++) < n;) {
-        try {
-          f(i);
-        } catch (...) {
-          const std::lock_guard<std::mutex> lock(guard);
-          if (!failure) failure = std::current_exception();
-        }
-      }
-    });
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
-}
 
 // Says "stop" once `flag` is set: a sewing no one waits for any more.
 class FlagIndicator : public Message_ProgressIndicator {
@@ -591,11 +562,11 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   // (two halves' root caps, back to back) are out: kept, they would lie
   // inside the closed body.
   // The rest starts from the sewing at `tol` (the ladder's first rung).
-  // The rungs are sewn in parallel, the first on this thread, each other on a copy of the
-  // faces (sewing widens the tolerances of what it sews), the later ones
-  // given up once the first closes it; a later rung that closes it is sewn
-  // again on the faces themselves, after the first, as it would have been
-  // in turn.
+  // The rungs are sewn in parallel: the first on the faces themselves, on
+  // this thread; each other on a copy of them (sewing widens the tolerances
+  // of what it sews), given up once the first closes the component. A later
+  // rung that closes it is sewn again on the faces themselves, after the
+  // first, as it would have been in turn.
   std::vector<double> rungs;
   for (double t : {tol, 10 * tol, 100 * tol})
     if (t == tol || t <= 1e-3 * component_diagonal) rungs.push_back(t);
