@@ -592,6 +592,10 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       climbed[j + 1] = climb(rungs[j + 1], own, &first_closes);
     });
   };
+  const auto first_rung = [&] {
+    climbed[0] = climb(rungs[0], faces, nullptr);
+    if (climbed[0].closes) first_closes = true;
+  };
   if (tbb::this_task_arena::max_concurrency() > 1) {
     std::exception_ptr failure;
     std::thread beside([&] {
@@ -602,18 +606,16 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       }
     });
     try {
-      climbed[0] = climb(rungs[0], faces, nullptr);
+      first_rung();
     } catch (...) {
       first_closes = true;
       beside.join();
       throw;
     }
-    if (climbed[0].closes) first_closes = true;
     beside.join();
     if (failure) std::rethrow_exception(failure);
   } else {
-    climbed[0] = climb(rungs[0], faces, nullptr);
-    if (climbed[0].closes) first_closes = true;
+    first_rung();
     later_rungs();
   }
   for (size_t i = 0; i < rungs.size(); ++i) {

@@ -255,16 +255,16 @@ bool simple_loops(const FaceMesh& fm) {
   return true;
 }
 
-// A face's regions as the face mesher takes them: boundary loops (face on
-// the left in uv) with the substituted chains' new nodes in place of their
-// old ones. Empty when a region's boundary cannot be walked (a pole, a
-// pinched corner) or holds no single outer loop.
 // Two region boundaries alike: the same nodes (uv, shared node, place) in the same loops.
 bool same_boundary(const FaceMesh& a, const FaceMesh& b) {
   return a.face == b.face && a.global == b.global && a.pole == b.pole && a.loops == b.loops && a.uv == b.uv &&
          a.shared_xyz == b.shared_xyz && a.tris == b.tris;
 }
 
+// A face's regions as the face mesher takes them: boundary loops (face on
+// the left in uv) with the substituted chains' new nodes in place of their
+// old ones. Empty when a region's boundary cannot be walked (a pole, a
+// pinched corner) or holds no single outer loop.
 struct Region {
   FaceMesh boundary;
   bool flip = false;  // the face's triangles run clockwise in uv
