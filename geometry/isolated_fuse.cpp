@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "geometry/child_process.h"
+#include "geometry/deadline.h"
 #include "geometry/occt_model.h"
 
 namespace sizemesh {
@@ -74,7 +75,7 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
       [&](const std::string& file, bool threads) {
         return write_step(file, here(threads && kSerialPool), inputs);
       },
-      seconds + 1.0, path);
+      kWallPerWork * seconds + 1.0, path);
   FuseStep out;
   switch (outcome) {
     case ChildOutcome::Done:

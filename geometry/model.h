@@ -152,7 +152,7 @@ CadFile read_cad(const std::string& path, const LoadOptions& options = {});
 Model prepare_model(const CadFile& cad, const LoadOptions& options = {});
 
 // The union's wall-time budget for a file: options.union_seconds, or by
-// default 3 s per component after sewing, 16 to 20 s (the union of meshes
+// default 1.5 s per component after sewing, 4 to 8 s (the union of meshes
 // takes what it leaves); inside a flow domain 4 s per component, at least
 // 12 s. An attempt past it is abandoned for the next route.
 double union_budget(const CadFile& cad, const LoadOptions& options);

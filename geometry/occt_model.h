@@ -110,8 +110,9 @@ struct FuseStep {
   int pocket_faces = 0;     // faces of enclosed air pockets dropped
 };
 
-// geometry/isolated_fuse.cpp: `here(parallel)` (a fuse of `parts`) run in a
-// child process that is ended at `seconds` whether or not the fuse listens,
+// geometry/isolated_fuse.cpp: `here(parallel)` (a fuse of `parts`, budgeted
+// `seconds` of work) run in a child process that is ended at kWallPerWork
+// times `seconds` of wall time whether or not the fuse listens,
 // its result handed back exactly (BinTools); parallel when the child may
 // start threads (run_in_child), else on one thread. `here(true)` in this
 // process when no child can be made.

@@ -749,14 +749,15 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
   for (const auto& s : bodies) builder.Add(all_bodies, s);
   std::vector<TopoDS_Shape> parts{all_bodies};
   parts.insert(parts.end(), sheets.begin(), sheets.end());
-  const FuseStep step = fuse_in_child(parts, deadline.remaining(), [&](bool parallel) {
+  const double seconds = deadline.remaining();
+  const FuseStep step = fuse_in_child(parts, seconds, [&](bool parallel) {
     FuseStep out;
     TopTools_ListOfShape args;
     for (const auto& p : parts) args.Append(p);
     BOPAlgo_Builder fuse;
     fuse.SetArguments(args);
     fuse.SetRunParallel(parallel);
-    Handle(DeadlineIndicator) stop = new DeadlineIndicator(deadline.end());
+    Handle(DeadlineIndicator) stop = new DeadlineIndicator(seconds);
     try {
       fuse.Perform(stop->Start());
     } catch (const Standard_Failure&) {
@@ -801,18 +802,20 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 }
 
 // Without a flow domain, the union of meshes takes over what the B-rep union
-// leaves (mesher/mesh_union.h) in seconds, and closed: 3 s per component
-// within 16 to 20 s, so a fuse that would take a minute (OpenVSP's B-splines
-// of hundreds of spans, every edge against every face it reaches) is not
-// waited for, and one that takes 6 s idle (the F-16, the manta) still ends
-// on a machine twice as loaded. Inside a flow domain nothing takes over:
-// 4 s per component, at least 12 s.
+// leaves (mesher/mesh_union.h) in seconds, and closed: 1.5 s per component
+// within 4 to 8 s, repair included, so the preparation ends within 10 s with
+// its last splits. A fuse of OpenVSP's B-splines of hundreds of spans (every
+// edge against every face it reaches) that would take 10 s to a minute is
+// not waited for: the union of meshes does the same in 2 to 5 s. The fuses
+// that end (the F-16 in 2 s, the manta in 3.5 s) still end with room to
+// spare. Inside a flow domain nothing takes over: 4 s per component, at
+// least 12 s.
 bool meshes_take_over(const LoadOptions& o) { return !o.domain.active(); }
 
 double default_budget(const LoadOptions& o, size_t components) {
   if (o.union_seconds > 0) return o.union_seconds;
   const double n = static_cast<double>(components);
-  return meshes_take_over(o) ? std::clamp(3.0 * n, 16.0, 20.0) : std::max(12.0, 4.0 * n);
+  return meshes_take_over(o) ? std::clamp(1.5 * n, 4.0, 8.0) : std::max(12.0, 4.0 * n);
 }
 
 }  // namespace

@@ -111,8 +111,8 @@ std::string invalidity(const TopoDS_Shape& shape) {
   return out;
 }
 
-// The general fuse of `parts` as one solid, within `seconds` (as far as the
-// fuse listens), on `parallel` threads.
+// The general fuse of `parts` as one solid, within `seconds` of work (as far
+// as the fuse listens; geometry/deadline.h), on `parallel` threads.
 FuseStep fuse_here(const std::vector<TopoDS_Shape>& parts, double fuzzy, double seconds, bool parallel) {
   FuseStep out;
   try {
@@ -124,7 +124,7 @@ FuseStep fuse_here(const std::vector<TopoDS_Shape>& parts, double fuzzy, double 
     cells.SetNonDestructive(true);
     cells.SetUseOBB(true);
     if (fuzzy > 0) cells.SetFuzzyValue(fuzzy);
-    Handle(DeadlineIndicator) stop = new DeadlineIndicator(Deadline(seconds).end());
+    Handle(DeadlineIndicator) stop = new DeadlineIndicator(seconds);
     cells.Perform(stop->Start());
     if (cells.HasErrors()) {
       out.out_of_time = stop->why();

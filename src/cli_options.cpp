@@ -42,7 +42,7 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
   app.add_flag("!--no-union", cl.options.load.unite,
                "mesh each component where it lies: no repair of open components, no union of the closed ones");
   app.add_option("--union-seconds", cl.options.load.union_seconds,
-                 "wall-time budget of the union of components (default 3 s per component, 16 to 20 s; with a far field or symmetry plane 4 s per component, at least 12); an attempt "
+                 "wall-time budget of the union of components (default 1.5 s per component, 4 to 8 s, repair included; with a far field or symmetry plane 4 s per component, at least 12); an attempt "
                  "past it is abandoned and the components it leaves out are named (exit 3)")
       ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--mesh-union", cl.mesh_union,
