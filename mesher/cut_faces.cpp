@@ -18,7 +18,7 @@
 namespace sizemesh {
 namespace {
 
-constexpr int kRounds = 4;
+constexpr int kRounds = 5;
 
 uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -259,6 +259,41 @@ bool simple_loops(const FaceMesh& fm) {
 bool same_boundary(const FaceMesh& a, const FaceMesh& b) {
   return a.face == b.face && a.global == b.global && a.pole == b.pole && a.loops == b.loops && a.uv == b.uv &&
          a.shared_xyz == b.shared_xyz && a.tris == b.tris;
+}
+
+// The face's triangles `tris` (of `all` its triangles, the others held)
+// meet at a node two or more times around it: the triangles of `all` at
+// such nodes are held too, so that the rest of the face has boundary loops
+// the face mesher can walk. False when there is no such node.
+bool held_pinches(const SurfaceMesh& s, const std::vector<int>& all, const std::vector<int>& tris, std::set<int>& held) {
+  if (tris.size() == all.size()) return false;
+  auto edge_key_directed = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  std::unordered_set<uint64_t> directed;
+  for (int t : tris)
+    for (int k = 0; k < 3; ++k) directed.insert(edge_key_directed(s.tris[t][k], s.tris[t][(k + 1) % 3]));
+  std::unordered_map<int, int> leaving;  // node -> boundary edges leaving it
+  for (int t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.tris[t][k], b = s.tris[t][(k + 1) % 3];
+      if (!directed.count(edge_key_directed(b, a))) ++leaving[a];
+    }
+  bool grew = false;
+  for (int t : all)
+    for (int n : s.tris[t])
+      if (const auto it = leaving.find(n); it != leaving.end() && it->second > 1) grew = held.insert(t).second || grew;
+  return grew;
+}
+
+// Triangle t turns against its surface: its normal and the face's at its
+// uv centroid (oriented as in the shell) point apart.
+bool inverted(const SurfaceMesh& m, const Geometry& g, size_t t) {
+  const auto& tr = m.tris[t];
+  const Vec3 n = (m.xyz[tr[1]] - m.xyz[tr[0]]).cross(m.xyz[tr[2]] - m.xyz[tr[0]]);
+  const int f = m.tri_face[t];
+  const SurfaceD1 d = g.eval_face(f, (m.tri_uv[t][0] + m.tri_uv[t][1] + m.tri_uv[t][2]) / 3.0);
+  Vec3 ns = d.du.cross(d.dv);
+  if (g.face_reversed(f)) ns = -ns;
+  return ns.norm() > 0 && n.dot(ns) <= 0;
 }
 
 // A face's regions as the face mesher takes them: boundary loops (face on
@@ -513,6 +548,8 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   const long long crossing_before = find_self_intersections(s, 0).pairs;
   std::set<int> kept;        // faces left with their triangles
   std::set<size_t> frozen;   // chains that keep their nodes
+  std::set<int> held;        // triangles of faces meshed again that stay, with their nodes
+  std::map<int, std::vector<Eigen::AlignedBox3d>> old_boxes;  // by face, of tris_of's triangles
   // Regions meshed in an earlier round, by face: the boundary given and the
   // mesh made. A round meshes again only the regions whose boundary changed
   // (those next to a face that now keeps its triangles).
@@ -535,10 +572,17 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
         for (size_t j = 1; j + 1 < c.nodes.size(); ++j) owner[c.nodes[j]] = static_cast<int>(k);
       }
       regions.clear();
-      for (const auto& [f, tris] : tris_of) {
+      for (const auto& [f, all_tris] : tris_of) {
         if (kept.count(f)) continue;
+        std::vector<int> tris;
+        for (int t : all_tris)
+          if (!held.count(t)) tris.push_back(t);
         bool ok = false;
         auto r = face_regions(s, g, f, tris, chains, owner, chain_of_edge, ok);
+        if (!ok && held_pinches(s, all_tris, tris, held)) {
+          changed = true;
+          break;
+        }
         if (!ok) {
           // First with its junctions' old nodes, then as it is.
           bool froze = false;
@@ -594,7 +638,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     std::vector<int> tri_face, fresh;
     std::vector<std::array<Vec2, 3>> tri_uv;
     for (size_t t = 0; t < s.tris.size(); ++t)
-      if (!regions.count(s.tri_face[t])) {
+      if (!regions.count(s.tri_face[t]) || held.count(static_cast<int>(t))) {
         tris.push_back(s.tris[t]);
         tri_face.push_back(s.tri_face[t]);
         tri_uv.push_back(s.tri_uv[t]);
@@ -664,17 +708,63 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
       if (!blamed) return out;
       continue;
     }
-    // New triangles that cross others: their faces keep their triangles next round.
+    // New triangles that cross others or turn against their surface.
+    std::vector<int> wrong;
     const SelfIntersections hits = find_self_intersections(m, size_t(1) << 16);
-    if (hits.pairs > crossing_before) {
-      // Faces with new triangles in a crossing keep theirs next round.
-      bool blamed = false;
+    if (hits.pairs > crossing_before)
       for (const auto& [a, b] : hits.kept)
         for (int t : {a, b})
-          if (fresh_sorted[t]) blamed = kept.insert(m.tri_face[t]).second || blamed;
-      if (!blamed) return out;
-      continue;
+          if (fresh_sorted[t]) wrong.push_back(t);
+    const size_t crossing_wrong = wrong.size();
+    for (size_t t = 0; t < m.tris.size(); ++t)
+      if (fresh_sorted[t] && inverted(m, g, t)) wrong.push_back(static_cast<int>(t));
+    bool blamed = false;
+    if (!wrong.empty()) {
+      // Where two surfaces graze (a fin's root section lying on a fuselage's
+      // top), each side meshed on its own crosses the other within its
+      // chords. The old triangles (which crossed nothing) around each wrong
+      // new one are held next round, the rest of the face meshed again
+      // around them, and the junctions through them keep their nodes; in the
+      // last rounds, or where nothing more is held, the face keeps all its
+      // triangles.
+      const bool hold = round + 2 < kRounds;
+      for (size_t i = 0; i < wrong.size(); ++i) {
+        const int t = wrong[i], f = m.tri_face[t];
+        // The new triangle's box, grown by a quarter of its size: the old
+        // ones are chords of the same surface, nearer to it or farther.
+        Eigen::AlignedBox3d zone;
+        for (int n : m.tris[t]) zone.extend(m.xyz[n]);
+        const Eigen::Vector3d margin = Eigen::Vector3d::Constant(0.25 * zone.diagonal().norm());
+        zone = Eigen::AlignedBox3d(zone.min() - margin, zone.max() + margin);
+        auto& boxes = old_boxes[f];
+        if (boxes.empty())
+          for (int old : tris_of[f]) {
+            boxes.emplace_back();
+            for (int n : s.tris[old]) boxes.back().extend(s.xyz[n]);
+          }
+        std::vector<int> near;
+        for (size_t j = 0; j < boxes.size(); ++j)
+          if (zone.intersects(boxes[j])) near.push_back(tris_of[f][j]);
+        // A new triangle turned over where the old ones are too (a
+        // trailing edge thinner than the elements) is no worse than they.
+        if (i >= crossing_wrong &&
+            std::any_of(near.begin(), near.end(), [&](int old) { return inverted(s, g, static_cast<size_t>(old)); }))
+          continue;
+        if (!hold || kept.count(f) || near.empty()) {
+          blamed = kept.insert(f).second || blamed;
+          continue;
+        }
+        for (int old : near) blamed = held.insert(old).second || blamed;
+      }
+      for (size_t k = 0; k < chains.size(); ++k)
+        for (size_t j = 0; j + 1 < chains[k].nodes.size() && !frozen.count(k); ++j)
+          for (int t : topo.edge_tris.at(edge_key(chains[k].nodes[j], chains[k].nodes[j + 1])))
+            if (held.count(t)) frozen.insert(k);
     }
+    // Nothing more to hold or keep: new triangles turned over alone are
+    // taken as they are (the old ones were no better), crossings never.
+    if (blamed) continue;
+    if (hits.pairs > crossing_before) return out;
     // The junction as it ends: each chain's new nodes or its old ones.
     std::vector<std::array<int, 2>> ends;
     for (size_t k = 0; k < chains.size(); ++k) {

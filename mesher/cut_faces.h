@@ -15,11 +15,15 @@
 //         its node count and their distances from the surfaces as they end.
 //         A face whose region cannot be walked in uv (corners whose uv
 //         disagree, a junction that leaves the parameter domain) or meshed,
-//         or whose new triangles cross others or open an edge, keeps its
-//         triangles, and so do the junctions along it; s is left as it was
-//         when nothing could be done.
+//         or whose new triangles open an edge, keeps its triangles, and so
+//         do the junctions along it. Where new triangles cross others or
+//         turn over (and the old ones there did not), the old triangles
+//         around them are held and the rest of the face meshed again around
+//         them, the junctions through them keeping their nodes; in the last
+//         two rounds such a face keeps all its triangles. s is left as it
+//         was when nothing could be done.
 // Work:   the cut faces' meshing, and one self-intersection check per round
-//         (at most four rounds).
+//         (at most five rounds).
 #pragma once
 
 #include "geometry/geometry.h"
