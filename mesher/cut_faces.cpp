@@ -459,7 +459,8 @@ size_t open_edges(const SurfaceMesh& s) {
 // Nodes at one point merged (a cut that meets a CAD curve makes one on each
 // side of it), and the triangles that collapse with them dropped; the
 // junction's edges follow. Nothing changes when a merge would open an edge.
-void merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction, double tol) {
+// True when s changed.
+bool merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction, double tol) {
   std::vector<int> to(s.xyz.size());
   for (size_t i = 0; i < to.size(); ++i) to[i] = static_cast<int>(i);
   auto find = [&](int i) {
@@ -477,7 +478,7 @@ void merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction,
       to[rb] = ra;
       any = true;
     }
-  if (!any) return;
+  if (!any) return false;
   SurfaceMesh m = s;
   m.tris.clear(), m.tri_face.clear(), m.tri_uv.clear();
   for (size_t t = 0; t < s.tris.size(); ++t) {
@@ -487,12 +488,13 @@ void merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction,
     m.tri_face.push_back(s.tri_face[t]);
     m.tri_uv.push_back(s.tri_uv[t]);
   }
-  if (open_edges(m) > open_edges(s)) return;
+  if (open_edges(m) > open_edges(s)) return false;
   s = std::move(m);
   std::vector<std::array<int, 2>> moved;
   for (const auto& [a, b] : junction)
     if (find(a) != find(b)) moved.push_back({find(a), find(b)});
   junction = std::move(moved);
+  return true;
 }
 
 // The junction's nodes, and each one's largest distance from the surfaces
@@ -521,7 +523,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   Eigen::AlignedBox3d box;
   for (const Vec3& x : s.xyz) box.extend(x);
   const double tol = 1e-13 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
-  merge_coincident(s, junction, 1e3 * tol);
+  const bool merged = merge_coincident(s, junction, 1e3 * tol);
   const Topology topo(s, g, junction);
   std::vector<Chain> chains = junction_chains(s, topo);
   std::vector<Vec3> xyz = s.xyz;
@@ -545,7 +547,9 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     if (cut.count(s.tri_face[t])) tris_of[s.tri_face[t]].push_back(static_cast<int>(t));
 
   const size_t open_before = open_edges(s);
-  const long long crossing_before = find_self_intersections(s, 0).pairs;
+  // The union counted the pairs of the mesh it made; a merge may change that.
+  const long long crossing_before =
+      !merged && u.crossing_pairs >= 0 ? u.crossing_pairs : find_self_intersections(s, 0).pairs;
   std::set<int> kept;        // faces left with their triangles
   std::set<size_t> frozen;   // chains that keep their nodes
   std::set<int> held;        // triangles of faces meshed again that stay, with their nodes

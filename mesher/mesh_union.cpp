@@ -109,6 +109,15 @@ std::string unfit(Tracked& t, std::vector<FI>& crossing) {
   return {};
 }
 
+// True when triangles of m within `box` intersect each other: where a piece
+// joined, the rest of m being as it was.
+bool crosses_within(const Mesh& m, const CGAL::Bbox_3& box) {
+  std::vector<FI> near;
+  for (FI f : m.faces())
+    if (CGAL::do_overlap(PMP::face_bbox(f, m), box)) near.push_back(f);
+  return PMP::does_self_intersect(near, m);
+}
+
 // True when every corner of the triangles `tris` of `m` lies strictly inside
 // the closed mesh `base`: a fold there, or the whole piece, is dropped by the union.
 bool inside_base(const Mesh& m, const std::vector<FI>& tris, const Mesh& base) {
@@ -468,7 +477,9 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
 // other side's facets, which stay chords: the nodes of every intersecting
 // pair that involves a moved node go back to their place on the meshes
 // (which did not intersect there), a few rounds, then every moved node does.
-void keep_apart(SurfaceMesh& r, const std::vector<Vec3>& before_snap) {
+// Returns the intersecting pairs left, or -1 when that last step left them
+// uncounted.
+long long keep_apart(SurfaceMesh& r, const std::vector<Vec3>& before_snap) {
   auto moved = [&](int t) {
     for (int n : r.tris[t])
       if (r.xyz[n] != before_snap[n]) return true;
@@ -484,9 +495,10 @@ void keep_apart(SurfaceMesh& r, const std::vector<Vec3>& before_snap) {
       for (int t : pair)
         for (int n : r.tris[t]) r.xyz[n] = before_snap[n];
     }
-    if (!any) return;
+    if (!any) return hits.pairs;
     if (round == 3) r.xyz = before_snap;
   }
+  return -1;
 }
 
 }  // namespace
@@ -582,6 +594,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     Follow follow;
     follow.s->a = base.get();
     follow.s->b = part.get();
+    const CGAL::Bbox_3 part_box = PMP::bbox(part->m);
     auto cut_now = base->m.add_property_map<EI, bool>("e:cut_now", false).first;
     std::string wrong;
     try {
@@ -590,7 +603,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
                                            PMP::parameters::default_values(),
                                            PMP::parameters::edge_is_constrained_map(cut_now)))
         wrong = "the corefinement of its mesh with the rest failed";
-      else if (folded && PMP::does_self_intersect(base->m))
+      else if (folded && crosses_within(base->m, part_box))
         wrong = "its mesh intersects itself, and its union with the rest does too";
       const double v = wrong.empty() ? PMP::volume(base->m) : 0.0;
       const double slack = 1e-6 * (volume_base + std::abs(volume_part));
@@ -805,7 +818,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     r.tri_face.push_back(tri_face[t]);
     r.tri_uv.push_back(tri_uv[t]);
   }
-  keep_apart(r, before_snap);
+  out.crossing_pairs = keep_apart(r, before_snap);
   for (EI e : m.edges())
     if (base->cut[e]) out.junction.push_back({used[id[m.vertex(e, 0)]], used[id[m.vertex(e, 1)]]});
   // Each junction node's distance from each of its surfaces, as it ends.

@@ -41,6 +41,7 @@ struct MeshUnionResult {
   double max_junction_gap = 0;        // largest distance of a projected junction node from either surface
   std::vector<std::array<int, 2>> junction;  // the cut edges (node pairs) in the united mesh
   std::set<int> band_faces;                  // CAD faces with triangles in, or next to, a remeshed band
+  long long crossing_pairs = -1;             // intersecting triangle pairs of the united mesh (-1: not counted)
 };
 
 // Counts junction node x into u: projected onto the surface of each face of
