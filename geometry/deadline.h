@@ -1,7 +1,8 @@
-// A wall-clock budget for OpenCASCADE's long algorithms (the general fuse,
-// sewing): their progress scopes ask the indicator whether to stop, and this
-// one says yes once the budget is spent, so an attempt is abandoned for the
-// next route instead of running for minutes. OpenCASCADE side: geometry/ only.
+// Budgets for OpenCASCADE's long algorithms: a wall-clock deadline (the
+// preparation's), and a progress indicator the general fuse's progress
+// scopes ask whether to stop, which says yes once its budget of work is
+// spent, so an attempt is abandoned for the next route instead of running
+// for minutes. OpenCASCADE side: geometry/ only.
 #pragma once
 
 #include <Message_ProgressIndicator.hxx>
@@ -38,7 +39,8 @@ class ThreadClock {
   ThreadClock() { valid_ = pthread_getcpuclockid(pthread_self(), &id_) == 0; }
   double now() const {
     timespec t{};
-    if (!valid_ || clock_gettime(id_, &t) != 0) return std::chrono::duration<double>(Deadline::Clock::now().time_since_epoch()).count();
+    if (!valid_ || clock_gettime(id_, &t) != 0)
+      return std::chrono::duration<double>(Deadline::Clock::now().time_since_epoch()).count();
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
   }
 

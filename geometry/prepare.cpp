@@ -807,7 +807,7 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
 // its last splits. A fuse of OpenVSP's B-splines of hundreds of spans (every
 // edge against every face it reaches) that would take 10 s to a minute is
 // not waited for: the union of meshes does the same in 2 to 5 s. The fuses
-// that end (the F-16 in 2 s, the manta in 3.5 s) still end with room to
+// that end (the F-16's and the manta's, 2 and 2.6 s) end with room to
 // spare. Inside a flow domain nothing takes over: 4 s per component, at
 // least 12 s.
 bool meshes_take_over(const LoadOptions& o) { return !o.domain.active(); }

@@ -181,8 +181,8 @@ TEST_CASE("a transport's twelve components: a B-rep union on course to miss its 
   // the parameter domain, metres from the node, which the report would count
   // as inverted triangles.
   const test::TempDir dir("union_transport_mesh");
-  const auto j = test::run_with_report(test::model_path("transport_wbnp_openvsp.stp") + " -q --union-seconds 16 -o " + (dir / "t.vtu"),
-                                       (dir / "r.json"), 0);
+  const auto j = test::run_with_report(
+      test::model_path("transport_wbnp_openvsp.stp") + " -q --union-seconds 16 -o " + (dir / "t.vtu"), (dir / "r.json"), 0);
   const std::regex stopped(
       R"(the B-rep union of all 12 components was stopped (\d+)% through after ([\d.]+) s, on course for about (\d+) s of its ([\d.]+) s)");
   for (const auto& c : j["preparation"]["components"]) {
@@ -249,13 +249,14 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   CHECK(j["mesh"]["area"].get<double>() > 0.6 * cad_area);
   CHECK(j["mesh"]["area"].get<double>() < 0.75 * cad_area);
   // The fin's root section lies on the fuselage's top within 0.03 ft (the
-  // fuselage's top is at z = 2.56-2.59, the fin's root at 2.587): the two
-  // sides of that junction, each meshed again on its own, crossed each other
-  // in 858 pairs, and the fuselage's two faces kept the band's triangles
-  // all along, 824 of them under 12 degrees. The band's triangles around
-  // the crossings are held and the rest of every cut face is meshed again:
-  // no face keeps all its triangles, none is turned over, and the avoidable
-  // triangles under 12 degrees are 116 of 150,000 (898 before).
+  // fuselage's top is at z = 2.56-2.59, the fin's root at 2.587): meshed
+  // again each on its own, the two sides of that junction cross within
+  // their chords, and a face that kept its band triangles for it would keep
+  // them along all its junctions (the fuselage's two faces: hundreds of
+  // triangles under 12 degrees). The band's triangles around the crossings
+  // are held and the rest of every cut face is meshed again: no face keeps
+  // all its triangles, none is turned over, and under 200 of the 150,000
+  // triangles are avoidably under 12 degrees.
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
