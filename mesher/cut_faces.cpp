@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "mesher/mesh_surface.h"
+#include "mesher/quality.h"
 #include "mesher/self_intersection.h"
 #include "mesher/snap.h"
 
@@ -282,18 +283,6 @@ bool held_pinches(const SurfaceMesh& s, const std::vector<int>& all, const std::
     for (int n : s.tris[t])
       if (const auto it = leaving.find(n); it != leaving.end() && it->second > 1) grew = held.insert(t).second || grew;
   return grew;
-}
-
-// Triangle t turns against its surface: its normal and the face's at its
-// uv centroid (oriented as in the shell) point apart.
-bool inverted(const SurfaceMesh& m, const Geometry& g, size_t t) {
-  const auto& tr = m.tris[t];
-  const Vec3 n = (m.xyz[tr[1]] - m.xyz[tr[0]]).cross(m.xyz[tr[2]] - m.xyz[tr[0]]);
-  const int f = m.tri_face[t];
-  const SurfaceD1 d = g.eval_face(f, (m.tri_uv[t][0] + m.tri_uv[t][1] + m.tri_uv[t][2]) / 3.0);
-  Vec3 ns = d.du.cross(d.dv);
-  if (g.face_reversed(f)) ns = -ns;
-  return ns.norm() > 0 && n.dot(ns) <= 0;
 }
 
 // A face's regions as the face mesher takes them: boundary loops (face on
@@ -721,7 +710,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
           if (fresh_sorted[t]) wrong.push_back(t);
     const size_t crossing_wrong = wrong.size();
     for (size_t t = 0; t < m.tris.size(); ++t)
-      if (fresh_sorted[t] && inverted(m, g, t)) wrong.push_back(static_cast<int>(t));
+      if (fresh_sorted[t] && inverted_triangle(m, g, t)) wrong.push_back(static_cast<int>(t));
     bool blamed = false;
     if (!wrong.empty()) {
       // Where two surfaces graze (a fin's root section lying on a fuselage's
@@ -751,9 +740,8 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
           if (zone.intersects(boxes[j])) near.push_back(tris_of[f][j]);
         // A new triangle turned over where the old ones are too (a
         // trailing edge thinner than the elements) is no worse than they.
-        if (i >= crossing_wrong &&
-            std::any_of(near.begin(), near.end(), [&](int old) { return inverted(s, g, static_cast<size_t>(old)); }))
-          continue;
+        auto turned = [&](int old) { return inverted_triangle(s, g, static_cast<size_t>(old)); };
+        if (i >= crossing_wrong && std::any_of(near.begin(), near.end(), turned)) continue;
         if (!hold || kept.count(f) || near.empty()) {
           blamed = kept.insert(f).second || blamed;
           continue;

@@ -32,13 +32,9 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunct
   const Vec3 n = (b - a).cross(c - a);
   r.area = 0.5 * n.norm();
   r.zero_area = zero_area(a, b, c);
-  // Against the surface normal at the uv centroid, oriented as in the shell.
+  r.inverted = inverted_triangle(m, g, t);
   const int f = m.tri_face[t];
   const auto& uv = m.tri_uv[t];
-  const SurfaceD1 s = g.eval_face(f, (uv[0] + uv[1] + uv[2]) / 3.0);
-  Vec3 ns = s.du.cross(s.dv);
-  if (g.face_reversed(f)) ns = -ns;
-  r.inverted = ns.norm() > 0 && n.dot(ns) <= 0;
   for (int k = 0; k < 3; ++k) {
     const double d = (g.eval_face(f, uv[k]).p - m.xyz[tr[k]]).norm();
     r.node_distance = std::max(r.node_distance, d);
@@ -206,6 +202,17 @@ void count_self_intersections(const SurfaceMesh& m, const std::set<std::pair<int
 }
 
 }  // namespace
+
+bool inverted_triangle(const SurfaceMesh& m, const Geometry& g, size_t t) {
+  const auto& tr = m.tris[t];
+  const Vec3 n = (m.xyz[tr[1]] - m.xyz[tr[0]]).cross(m.xyz[tr[2]] - m.xyz[tr[0]]);
+  const int f = m.tri_face[t];
+  const auto& uv = m.tri_uv[t];
+  const SurfaceD1 s = g.eval_face(f, (uv[0] + uv[1] + uv[2]) / 3.0);
+  Vec3 ns = s.du.cross(s.dv);
+  if (g.face_reversed(f)) ns = -ns;
+  return ns.norm() > 0 && n.dot(ns) <= 0;
+}
 
 MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h) {
   MeshQuality q;

@@ -63,4 +63,8 @@ struct MeshQuality {
 
 MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h);
 
+// Triangle t of m is inverted: its normal and its face's surface normal at
+// its uv centroid (oriented as in the shell) point apart.
+bool inverted_triangle(const SurfaceMesh& m, const Geometry& g, size_t t);
+
 }  // namespace sizemesh
