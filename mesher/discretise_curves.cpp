@@ -54,10 +54,19 @@ CurveSamples sample_curve(const Geometry& g, const SizeFunction& h, int curve, i
     s.F[k] = s.F[k - 1] + 0.5 * ds * (1.0 / hs[k - 1] + 1.0 / hs[k]);  // Eq. 1a
     s.S[k] = s.S[k - 1] + ds;
   }
+  // Turning on chords a quarter of the local size long, or a 32nd of the
+  // curve where that is shorter: a curve that wobbles far below its elements
+  // (a fold line whose samples turn tens of degrees each, thousandths of the
+  // size across) does not turn at their scale, while a bend of a radius
+  // below the size, or a hole smaller than one element, still does.
   Vec3 prev = Vec3::Zero();
+  int anchor = 0;
   for (int k = 1; k <= m; ++k) {
-    Vec3 d = p[k] - p[k - 1];
     s.T[k] = s.turning;
+    const double chord = std::min(0.25 * std::min(hs[k], hs[anchor]), s.S[m] / 32);
+    if (k < m && s.S[k] - s.S[anchor] < chord) continue;
+    Vec3 d = p[k] - p[anchor];
+    anchor = k;
     if (d.norm() <= 0) continue;
     d.normalize();
     if (prev.norm() > 0) s.turning += std::acos(std::clamp(prev.dot(d), -1.0, 1.0));

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/background_mesh.h"
 #include "geometry/occt_model.h"
 #include "geometry/predicates.h"
 #include "mesher/discretise_curves.h"
@@ -180,6 +181,44 @@ TEST_CASE("closed curves and small loops get enough segments for a valid loop", 
   const SurfaceMesh m = mesh_surface(cyl, h);
   const MeshQuality q = mesh_quality(m, cyl, h);
   require_valid_closed(cyl, m, q, 1.0);
+}
+
+TEST_CASE("a curve that wobbles far below its elements gets segments by its size, not by its samples' turning", "[mesher][models]") {
+  // The 777's fin root and tip sections from OpenVSP: sampled finely, their
+  // tangents turn back and forth by tens of radians in all, thousandths of
+  // a foot across. At 60 degrees a segment that turning asked for several
+  // times the segments their size does (45-124 rad: up to 120 segments).
+  const Model model = load_model(test::model_path("b777_nosplit_openvsp.stp"));
+  BackgroundMesh bg = build_background_mesh(model);
+  SizeMap sizes = refine_background(model, bg, SizingParams{}, model.info().diagonal());
+  smooth(bg, sizes);
+  const SizeQuery query = size_query_for(model, bg, sizes.h);
+  const CurveMesh cm = discretise_curves(model, query);
+  int wobbly = 0;
+  for (int c = 1; c <= model.num_curves(); ++c) {
+    if (model.curve_degenerated(c)) continue;
+    double t0, t1;
+    model.curve_range(c, t0, t1);
+    const int m = 400;
+    double turning = 0, metric = 0;  // Eq. 1a's integral of ds/h
+    Vec3 before = model.eval_curve(c, t0), prev = Vec3::Zero();
+    for (int k = 1; k <= m; ++k) {
+      const Vec3 p = model.eval_curve(c, t0 + (t1 - t0) * k / m);
+      Vec3 d = p - before;
+      metric += d.norm() / query.at_xyz(0.5 * (p + before));
+      before = p;
+      if (!(d.norm() > 0)) continue;
+      d.normalize();
+      if (prev.norm() > 0) turning += std::acos(std::clamp(prev.dot(d), -1.0, 1.0));
+      prev = d;
+    }
+    if (turning < 20) continue;
+    ++wobbly;
+    const int n = static_cast<int>(cm.curves[c].node.size()) - 1;
+    INFO("curve " << c << ": samples turn " << turning << " rad, metric length " << metric << ", " << n << " segments");
+    CHECK(n <= 2 * metric + 3);
+  }
+  CHECK(wobbly >= 2);
 }
 
 TEST_CASE("a sharp corner gets one thin triangle: long first segments where its wedge is a quarter element wide", "[mesher]") {
