@@ -68,6 +68,10 @@ class Geometry {
   virtual std::vector<FaceLoop> face_loops(int face) const = 0;
   // Closest point on the face's surface to xyz, starting from uv; false if it fails.
   virtual bool project_to_face(int face, const Vec3& xyz, Vec2& uv) const = 0;
+  // The nearest point of the whole face's parameter box, wherever uv starts:
+  // slower, for a start that may lie where Newton stalls (a strip of the
+  // surface collapsed onto a line, a pole). By default, project_to_face().
+  virtual bool nearest_on_face(int face, const Vec3& xyz, Vec2& uv) const { return project_to_face(face, xyz, uv); }
 
   // --- curves ---
   virtual void curve_range(int curve, double& t0, double& t1) const = 0;

@@ -12,6 +12,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomLProp_CLProps.hxx>
 #include <GeomLProp_SLProps.hxx>
@@ -510,6 +511,23 @@ bool Model::project_to_face(int face, const Vec3& xyz, Vec2& uv) const {
     if (step.norm() <= 1e-12 * (1 + span.norm())) return true;
   }
   return std::isfinite(uv.x()) && std::isfinite(uv.y());
+}
+
+// OCCT's extrema over the face's parameter box (a sampled search, then
+// Newton from the best sample): the global nearest point.
+bool Model::nearest_on_face(int face, const Vec3& xyz, Vec2& uv) const {
+  const UVBox box = face_uv_bounds(face);
+  try {
+    GeomAPI_ProjectPointOnSurf extrema(gp_Pnt(xyz.x(), xyz.y(), xyz.z()), impl_->face_data[face - 1].surface,
+                                       box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y());
+    if (extrema.NbPoints() == 0) return false;
+    double u, v;
+    extrema.LowerDistanceParameters(u, v);
+    uv = Vec2(u, v);
+    return true;
+  } catch (const Standard_Failure&) {
+    return false;
+  }
 }
 
 void Model::curve_range(int curve, double& t0, double& t1) const {

@@ -115,6 +115,7 @@ class Model : public Geometry {
   double face_boundary_length(int face) const override;
   std::vector<FaceLoop> face_loops(int face) const override;
   bool project_to_face(int face, const Vec3& xyz, Vec2& uv) const override;
+  bool nearest_on_face(int face, const Vec3& xyz, Vec2& uv) const override;
   void curve_range(int curve, double& t0, double& t1) const override;
   bool curve_degenerated(int curve) const override;
   Vec3 eval_curve(int curve, double t) const override;

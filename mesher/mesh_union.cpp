@@ -702,6 +702,29 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       }
     }
     if (!started) continue;
+    // A start read off a source triangle's corners is linear in uv, off the
+    // surface by about the triangle's chord height; where the surface's
+    // parametrisation is not (a strip collapsed onto a trailing edge inside
+    // the triangle), it maps a good part of the triangle away: the nearest
+    // point of the whole face instead.
+    double source = 0;  // the longest edge of the triangles around, or of their sources
+    for (FI f : around) {
+      if (base->tri[f] >= 0)
+        for (int k = 0; k < 3; ++k) {
+          const auto& tr = s.tris[base->tri[f]];
+          source = std::max(source, (s.xyz[tr[k]] - s.xyz[tr[(k + 1) % 3]]).norm());
+        }
+      for (Mesh::Halfedge_index e : CGAL::halfedges_around_face(m.halfedge(f), m))
+        source = std::max(source, (xyz[m.source(e)] - xyz[m.target(e)]).norm());
+    }
+    for (size_t i = 0; i < faces.size(); ++i) {
+      auto off = [&](const Vec2& at) { return (g.eval_face(faces[i], at).p - xyz[v]).norm(); };
+      if (off(uv[i]) <= 0.1 * source) continue;
+      Vec2 at = uv[i];
+      const bool newton = g.project_to_face(faces[i], xyz[v], at);
+      if (!newton) at = uv[i];
+      if ((newton || g.nearest_on_face(faces[i], xyz[v], at)) && off(at) < off(uv[i])) uv[i] = at;
+    }
     for (size_t i = 0; i < faces.size(); ++i) vertex_uv[{uint32_t(v), faces[i]}] = uv[i];
     // The move stays under half the shortest edge at the node and turns no
     // triangle over; where it would (surfaces meeting at a grazing angle),

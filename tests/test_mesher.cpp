@@ -20,6 +20,10 @@
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <gp_Ax2.hxx>
 
 #include <algorithm>
@@ -186,8 +190,8 @@ TEST_CASE("closed curves and small loops get enough segments for a valid loop", 
 TEST_CASE("a curve that wobbles far below its elements gets segments by its size, not by its samples' turning", "[mesher][models]") {
   // The 777's fin root and tip sections from OpenVSP: sampled finely, their
   // tangents turn back and forth by tens of radians in all, thousandths of
-  // a foot across. At 60 degrees a segment that turning asked for several
-  // times the segments their size does (45-124 rad: up to 120 segments).
+  // a foot across. At 60 degrees a segment, that turning asked for up to
+  // five times the segments their size does.
   const Model model = load_model(test::model_path("b777_nosplit_openvsp.stp"));
   BackgroundMesh bg = build_background_mesh(model);
   SizeMap sizes = refine_background(model, bg, SizingParams{}, model.info().diagonal());
@@ -219,6 +223,41 @@ TEST_CASE("a curve that wobbles far below its elements gets segments by its size
     CHECK(n <= 2 * metric + 3);
   }
   CHECK(wobbly >= 2);
+}
+
+TEST_CASE("a point beside a strip collapsed onto a line is found on the surface from a start on the strip", "[mesher]") {
+  // A ruled B-spline whose v in [0, 1] lies on one line (as an exporter
+  // writes a sharp trailing edge into a wing's surface) and which runs out
+  // to a second line over v in [1, 2]. On the strip every v is one point:
+  // Newton started there cannot move in v, and the whole face's nearest
+  // point is taken instead.
+  TColgp_Array2OfPnt poles(1, 2, 1, 3);
+  for (int i = 1; i <= 2; ++i) {
+    const double x = 10.0 * (i - 1);
+    poles(i, 1) = gp_Pnt(x, 0, 0);
+    poles(i, 2) = gp_Pnt(x, 0, 0);
+    poles(i, 3) = gp_Pnt(x, 5, 1);
+  }
+  TColStd_Array1OfReal uk(1, 2), vk(1, 3);
+  TColStd_Array1OfInteger um(1, 2), vm(1, 3);
+  uk(1) = 0, uk(2) = 1, um(1) = um(2) = 2;
+  vk(1) = 0, vk(2) = 1, vk(3) = 2, vm(1) = vm(3) = 2, vm(2) = 1;
+  Handle(Geom_BSplineSurface) strip = new Geom_BSplineSurface(poles, uk, vk, um, vm, 1, 1);
+  LoadOptions as_read;  // the surface as written, not repaired
+  as_read.sew = false;
+  as_read.unite = false;
+  const Model model = model_from_shape(BRepBuilderAPI_MakeFace(strip, 1e-7).Face(), as_read);
+  REQUIRE(model.num_faces() == 1);
+  const Vec3 x(4, 2.5, 0.5);  // S(0.4, 1.5)
+  Vec2 uv(0.4, 0.5);
+  REQUIRE(model.eval_face(1, uv).du.norm() > 0);
+  REQUIRE(model.eval_face(1, uv).dv.norm() == 0);
+  Vec2 newton = uv;
+  const bool stalled = !model.project_to_face(1, x, newton) || (model.eval_face(1, newton).p - x).norm() > 1;
+  CHECK(stalled);
+  REQUIRE(model.nearest_on_face(1, x, uv));
+  CHECK((model.eval_face(1, uv).p - x).norm() < 1e-9);
+  CHECK(uv.y() == Approx(1.5).margin(1e-9));
 }
 
 TEST_CASE("a sharp corner gets one thin triangle: long first segments where its wedge is a quarter element wide", "[mesher]") {
@@ -464,6 +503,9 @@ class FaultyFace final : public Geometry {
   std::vector<FaceLoop> face_loops(int face) const override { return g_.face_loops(face); }
   bool project_to_face(int face, const Vec3& xyz, Vec2& uv) const override {
     return g_.project_to_face(face, xyz, uv);
+  }
+  bool nearest_on_face(int face, const Vec3& xyz, Vec2& uv) const override {
+    return g_.nearest_on_face(face, xyz, uv);
   }
   void curve_range(int curve, double& t0, double& t1) const override { g_.curve_range(curve, t0, t1); }
   bool curve_degenerated(int curve) const override { return g_.curve_degenerated(curve); }
