@@ -58,6 +58,7 @@ struct Chain {
   std::vector<Vec3> x;     // new inner nodes: position, uv on fa and fb, node id
   std::vector<Vec2> uva, uvb;
   std::vector<int> id;
+  std::vector<double> size;  // the size map at `nodes`: the finer of its two faces
 };
 
 // The mesh's edges, nodes and junction, read once.
@@ -157,6 +158,50 @@ std::vector<Chain> junction_chains(const SurfaceMesh& s, const Topology& topo) {
   return out;
 }
 
+// The size map, bounded near the junction by the sizes along it grown at
+// the face's gradient bound (Eq. 12, |h_i - h_j| <= ln(beta) l_ij, with the
+// straight distance for the length): two components' size maps meet at a
+// junction neither saw, and a face coarse where the other is fine would
+// jump from the junction's size to its own within one element.
+class JunctionGradedSize final : public SizeFunction {
+ public:
+  JunctionGradedSize(const Geometry& g, const SizeFunction& base, const std::vector<double>& slope)
+      : g_(g), base_(base), slope_(slope) {}
+  void add(int face, const Vec3& x, double size) {
+    if (face > 0 && face < static_cast<int>(slope_.size()) && slope_[face] > 0 && size > 0 && std::isfinite(size))
+      seeds_[face].push_back({size, x});
+  }
+  // Seeds by size, for the early stop in bound().
+  void finish() {
+    for (auto& [f, list] : seeds_)
+      std::sort(list.begin(), list.end(), [](const Seed& a, const Seed& b) { return a.size < b.size; });
+  }
+  double at(int face, const Vec2& uv, int& hint) const override {
+    const double h = base_.at(face, uv, hint);
+    const auto it = seeds_.find(face);
+    if (it == seeds_.end() || !(h > it->second.front().size)) return h;
+    return bound(it->second, slope_[face], g_.eval_face(face, uv).p, h);
+  }
+  double at_xyz(const Vec3& x) const override { return base_.at_xyz(x); }  // no face: the size map's
+
+ private:
+  struct Seed {
+    double size;
+    Vec3 x;
+  };
+  static double bound(const std::vector<Seed>& seeds, double slope, const Vec3& x, double h) {
+    for (const Seed& s : seeds) {
+      if (s.size >= h) break;
+      h = std::min(h, s.size + slope * (x - s.x).norm());
+    }
+    return h;
+  }
+  const Geometry& g_;
+  const SizeFunction& base_;
+  const std::vector<double>& slope_;
+  std::map<int, std::vector<Seed>> seeds_;
+};
+
 // The chain's faces and its nodes sampled again to the size map: as many
 // segments as the integral of 1/h along it (Eq. 1a-1b), each new node put on
 // both surfaces.
@@ -175,16 +220,20 @@ void resample(Chain& c, const SurfaceMesh& s, const Topology& topo, const Geomet
   const size_t n = c.nodes.size();
   std::vector<Vec2> ua(n), ub(n);
   std::vector<double> w(n);
-  int hint = -1;
+  int hint_a = -1, hint_b = -1;
   for (size_t i = 0; i < n; ++i) {
     const Vec2 *a = topo.uv(c.nodes[i], c.fa), *b = topo.uv(c.nodes[i], c.fb);
     if (!a || !b) return;
     ua[i] = i ? unwrap(g, c.fa, *a, ua[i - 1]) : *a;
     ub[i] = i ? unwrap(g, c.fb, *b, ub[i - 1]) : *b;
-    const double size = h.at(c.fa, ua[i], hint);
+    // The junction is meshed to the finer side: the size map of each
+    // component saw only its own faces.
+    const double size = std::min(h.at(c.fa, ua[i], hint_a), h.at(c.fb, ub[i], hint_b));
     if (!(size > 0) || !std::isfinite(size)) return;
     w[i] = 1.0 / size;
   }
+  c.size.resize(n);
+  for (size_t i = 0; i < n; ++i) c.size[i] = 1.0 / w[i];
   std::vector<double> along(n, 0.0);
   for (size_t i = 1; i < n; ++i)
     along[i] = along[i - 1] + (s.xyz[c.nodes[i]] - s.xyz[c.nodes[i - 1]]).norm() * 0.5 * (w[i] + w[i - 1]);
@@ -516,6 +565,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   const Topology topo(s, g, junction);
   std::vector<Chain> chains = junction_chains(s, topo);
   std::vector<Vec3> xyz = s.xyz;
+  JunctionGradedSize graded(g, h, o.size_slope);
   for (Chain& c : chains) {
     if (c.nodes.size() < 2) continue;
     resample(c, s, topo, g, h, tol);
@@ -523,7 +573,10 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
       c.id.push_back(static_cast<int>(xyz.size()));
       xyz.push_back(x);
     }
+    for (size_t i = 0; i < c.size.size(); ++i)
+      for (int f : {c.fa, c.fb}) graded.add(f, s.xyz[c.nodes[i]], c.size[i]);
   }
+  graded.finish();
   // The faces on either side of a junction, and those the union's band
   // remesh reached: its uniform length splits the CAD curves it crosses, and
   // a face beyond them is left with fans of slivers on each split edge.
@@ -606,7 +659,14 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
       }
       given[i] = all[i]->boundary;
       std::string why;
-      meshed[i] = mesh_within(g, h, all[i]->boundary, o, why);
+      meshed[i] = mesh_within(g, graded, all[i]->boundary, o, why);
+      // A front that cannot close a region at the graded sizes (a junction
+      // that hooks back on a face with a stretched parametrisation) may at
+      // the size map's own.
+      if (!meshed[i]) {
+        all[i]->boundary = given[i];
+        meshed[i] = mesh_within(g, h, all[i]->boundary, o, why);
+      }
     });
     for (size_t i = 0; i < all.size(); ++i)
       if (meshed[i] && !earlier[i]) meshed_before[all[i]->boundary.face].emplace_back(std::move(given[i]), all[i]->boundary);

@@ -71,6 +71,10 @@ struct MeshOptions {
   // than phi_c allows and it is split (optimise.h).
   std::vector<double> max_turn;
   double h_min = 0;  // the size map's floor: a split for turning leaves no edge under it
+  // Per face (index face id; empty or 0: none), the size map's bound on its
+  // gradient, ln(beta) (Eq. 12): sizes met along a junction the size map
+  // never saw (a union of meshes) grow away from it no faster.
+  std::vector<double> size_slope;
   // Called after each face with (faces done, faces in all), from any thread.
   std::function<void(int, int)> on_face_done;
 };

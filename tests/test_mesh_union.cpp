@@ -190,6 +190,55 @@ TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the 
   }
 }
 
+TEST_CASE("a thin tube through a coarse box: the box is meshed from the junction's size, growing at the gradient bound") {
+  // Each component's size map saw only itself: at the junction the tube's
+  // curvature asks for elements some forty times smaller than the box's
+  // plane. The junction is sampled to the finer, and the box's top is meshed
+  // with sizes grown from it at ln(beta) per unit length (Eq. 12): no fan of
+  // slivers from the junction's nodes to the plane's coarse ones.
+  const test::TempDir dir("mesh_union_tube");
+  const double radius = 0.1;
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10.0, 10.0, 10.0).Shape();
+  const TopoDS_Shape tube = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(5, 5, 5), gp_Dir(0, 0, 1)), radius, 7.0).Shape();
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({box, tube}, dir / "tube.brep"), load);
+  CHECK(r->model->info().preparation.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  // The box less the tube's foot, the tube's 2 above the box and its cap.
+  require_clean(*r, 600.0 + 2 * M_PI * radius * 2.0);
+  CHECK(r->report.cut_faces.faces_kept == 0);
+  // On the box's top (z = 10): the longest edge of the triangles at each
+  // distance d from the tube's axis is within twice h_j + ln(1.2) d, h_j the
+  // longest junction edge.
+  const MeshUnionResult& u = r->report.mesh_union;
+  REQUIRE(!u.junction.empty());
+  double hj = 0;
+  for (const auto& [a, b] : u.junction) hj = std::max(hj, (r->mesh.xyz[a] - r->mesh.xyz[b]).norm());
+  INFO("junction edges up to " << hj);
+  CHECK(hj < 0.25 * radius * 2 * M_PI);
+  int top = 0, over = 0;
+  double worst = 0;
+  for (const auto& t : r->mesh.tris) {
+    bool on_top = true;
+    for (int v : t) on_top = on_top && std::abs(r->mesh.xyz[v].z() - 10.0) < 1e-9;
+    if (!on_top) continue;
+    ++top;
+    double d = HUGE_VAL, longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& x = r->mesh.xyz[t[k]];
+      d = std::min(d, std::hypot(x.x() - 5, x.y() - 5) - radius);
+      longest = std::max(longest, (r->mesh.xyz[t[(k + 1) % 3]] - x).norm());
+    }
+    const double ratio = longest / (hj + std::log(1.2) * std::max(d, 0.0));
+    worst = std::max(worst, ratio);
+    over += ratio > 2;
+  }
+  INFO(top << " triangles on the top, worst ratio " << worst);
+  CHECK(top > 0);
+  CHECK(over == 0);
+}
+
 TEST_CASE("a box through a sphere united at mesh level: the sphere, poles and seam, meshed again from the junction") {
   const test::TempDir dir("mesh_union_sphere");
   const TopoDS_Shape sphere = BRepPrimAPI_MakeSphere(1.0).Shape();
