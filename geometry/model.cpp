@@ -236,6 +236,8 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
   auto cad = std::make_shared<CadFile::Impl>();
   TopoDS_Shape shape = shape_in;
   const double diag = bbox_diagonal(shape, info.bbox_min, info.bbox_max);
+  int real_edges = 0;
+  shape = real_degenerate_edges(shape, options.sewing_tolerance_rel * diag, real_edges);
   info.free_curves_before_sewing = count_free_curves(shape);
   {
     TopTools_IndexedMapOfShape fm;

@@ -155,7 +155,13 @@ Caps planar_caps(const TopoDS_Shape& shape, double tol, const HalfModelPlanes& h
 // two between them, so sewing can join the halves; (face, piece) pairs in
 // `pieces`.
 std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, double tol,
-                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces);
+                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces, int depth = 0);
+// A degenerated edge is a point of its face's surface; one whose pcurve the
+// surface maps onto a curve longer than 100 tol (an OpenVSP fuselage whose
+// end section is a vertical line, flagged as a point) becomes a real edge
+// on that curve, closed at its vertex, which split_pinched() then opens at
+// its folds. `made`: how many.
+TopoDS_Shape real_degenerate_edges(const TopoDS_Shape& shape, double tol, int& made);
 
 // The prepared shape and, for each of its faces, the id of the sewn face it
 // came from (ids: `original`'s indices).

@@ -8,13 +8,22 @@
 // internal planform plane may be sewn to one side of it instead). Split
 // between the two edges, along the parameter line through the point where
 // they meet, the face becomes two whose edges along the slit sewing joins.
+// A fuselage whose end section has zero width but some height is the same
+// slit, written as a degenerated edge (a point) that the surface maps onto
+// the line, up and back down: made a real edge first
+// (real_degenerate_edges), it is split at each turn.
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <Geom_Surface.hxx>
+#include <ShapeBuild_ReShape.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Precision.hxx>
 #include <ShapeExtend.hxx>
@@ -155,6 +164,35 @@ bool folded(const TopoDS_Edge& e, double tol, double& turn) {
   return true;
 }
 
+// True when edge e, closed or not, turns straight back along itself inside
+// its range (a section collapsed onto a line runs up it and back down):
+// `turn` the parameter of the first such reversal, the samples on either
+// side of it within tol of the other side's.
+bool reverses(const TopoDS_Edge& e, double tol, double& turn) {
+  BRepAdaptor_Curve c(e);
+  const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+  constexpr int n = 128, side = 6;
+  std::vector<gp_Pnt> p(n + 1);
+  for (int i = 0; i <= n; ++i) p[i] = c.Value(t0 + (t1 - t0) * i / n);
+  for (int i = side; i + side <= n; ++i) {
+    const gp_Vec a(p[i - 1], p[i]), b(p[i], p[i + 1]);
+    if (!(a.Magnitude() > 0.1 * tol) || !(b.Magnitude() > 0.1 * tol) || !(a.Dot(b) < -0.9 * a.Magnitude() * b.Magnitude()))
+      continue;
+    const std::vector<gp_Pnt> before(p.begin() + i - side, p.begin() + i + 1), after(p.begin() + i, p.begin() + i + side + 1);
+    const double reach = std::min(p[i].Distance(p[i - side]), p[i].Distance(p[i + side]));
+    bool back = reach > 10 * tol;
+    for (int k = 1; k <= side && back; ++k) {
+      // Within the shorter side's reach, each side lies on the other.
+      if (p[i - k].Distance(p[i]) <= reach) back = distance_to(p[i - k], after) <= tol;
+      if (back && p[i + k].Distance(p[i]) <= reach) back = distance_to(p[i + k], before) <= tol;
+    }
+    if (!back) continue;
+    turn = t0 + (t1 - t0) * i / n;
+    return true;
+  }
+  return false;
+}
+
 // The (u or v, value) to split face f at across a folded edge: the parameter
 // line through its turning point, across the direction it runs in.
 bool split_line_at_turn(const TopoDS_Face& f, const TopoDS_Edge& e, double turn, bool& along_u, double& t) {
@@ -196,8 +234,46 @@ std::vector<TopoDS_Face> divided(const TopoDS_Face& f, bool along_u, double t) {
 
 }  // namespace
 
+TopoDS_Shape real_degenerate_edges(const TopoDS_Shape& shape, double tol, int& made) {
+  made = 0;
+  ShapeBuild_ReShape reshape;
+  for (TopExp_Explorer fx(shape, TopAbs_FACE); fx.More(); fx.Next()) {
+    const TopoDS_Face& f = TopoDS::Face(fx.Current());
+    for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      if (!BRep_Tool::Degenerated(e)) continue;
+      try {
+        double a, b;
+        const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, f, a, b);
+        TopLoc_Location at;
+        const Handle(Geom_Surface) surface = BRep_Tool::Surface(f, at);
+        if (pc.IsNull() || surface.IsNull() || !at.IsIdentity()) continue;
+        Bnd_Box image;
+        for (int k = 0; k <= 32; ++k) {
+          const gp_Pnt2d uv = pc->Value(a + (b - a) * k / 32);
+          image.Add(surface->Value(uv.X(), uv.Y()));
+        }
+        if (!(std::sqrt(image.SquareExtent()) > 100 * tol)) continue;
+        TopoDS_Vertex v0, v1;
+        TopExp::Vertices(e, v0, v1);
+        BRepBuilderAPI_MakeEdge edge(pc, surface, v0, v1, a, b);
+        if (!edge.IsDone()) continue;
+        TopoDS_Edge real = edge.Edge();
+        if (!BRepLib::BuildCurve3d(real)) continue;
+        BRep_Builder().UpdateEdge(real, BRep_Tool::Tolerance(e) > tol ? BRep_Tool::Tolerance(e) : tol);
+        real.Orientation(e.Orientation());
+        reshape.Replace(e, real);
+        ++made;
+      } catch (const Standard_Failure&) {
+        continue;
+      }
+    }
+  }
+  return made > 0 ? reshape.Apply(shape) : shape;
+}
+
 std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, double tol,
-                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces) {
+                                       std::vector<std::pair<TopoDS_Face, TopoDS_Face>>& pieces, int depth) {
   std::vector<TopoDS_Face> out;
   for (const TopoDS_Face& f : faces) {
     std::vector<TopoDS_Face> split;
@@ -217,7 +293,8 @@ std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, do
         const TopoDS_Edge& e = TopoDS::Edge(edges(i));
         double turn, t;
         bool along_u;
-        if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, f) || !folded(e, tol, turn)) continue;
+        if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, f) || !(folded(e, tol, turn) || reverses(e, tol, turn)))
+          continue;
         if (split_line_at_turn(f, e, turn, along_u, t)) split = divided(f, along_u, t);
       }
     } catch (const Standard_Failure&) {
@@ -227,6 +304,10 @@ std::vector<TopoDS_Face> split_pinched(const std::vector<TopoDS_Face>& faces, do
       out.push_back(f);
       continue;
     }
+    // A boundary that folds more than once (a section collapsed onto a
+    // line runs up it and back down) is split again in its pieces.
+    std::vector<std::pair<TopoDS_Face, TopoDS_Face>> within;
+    if (depth < 4) split = split_pinched(split, tol, within, depth + 1);
     for (const TopoDS_Face& p : split) {
       pieces.emplace_back(f, p);
       out.push_back(p);

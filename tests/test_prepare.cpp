@@ -287,6 +287,36 @@ TEST_CASE("OpenVSP's one-piece fin: its caps, halves folded onto the chord, beco
   CHECK(point_like == 0);
 }
 
+TEST_CASE("OpenVSP's fuselage ending in a vertical line flagged as a point: a real edge there, opened at its folds and sewn", "[models]") {
+  // The 777's fuselage ends at x = 206.5 ft in a section of zero width and
+  // 3.8 ft height: the surface maps the end's degenerated edge (a point, as
+  // written) onto that line, up it and back down. Meshed as a point, every
+  // node along the line fell onto one vertex: flat fans and turned-over
+  // triangles at the tail. Made a real edge on the line and split at its
+  // two turns, its pieces sew into one closed fuselage.
+  const Model model = load_model(test::model_path("b777_nosplit_openvsp.stp"));
+  const double tol = LoadOptions{}.sewing_tolerance_rel * model.info().diagonal();
+  int line_like = 0, at_end = 0;
+  for (int f = 1; f <= model.num_faces(); ++f)
+    for (const FaceLoop& loop : model.face_loops(f))
+      for (const CurveUse& u : loop) {
+        double t0, t1;
+        model.curve_range(u.curve, t0, t1);
+        if (model.curve_degenerated(u.curve)) {
+          Eigen::AlignedBox3d image;
+          for (int k = 0; k <= 16; ++k) image.extend(model.eval_face(f, model.eval_pcurve(u.curve, f, u.side, t0 + (t1 - t0) * k / 16)).p);
+          line_like += image.diagonal().norm() > 100 * tol;
+        } else {
+          const Vec3 a = model.eval_curve(u.curve, t0), b = model.eval_curve(u.curve, t1);
+          at_end += std::abs(a.x() - 206.5) < 1e-3 && std::abs(b.x() - 206.5) < 1e-3 && std::abs(a.z() - b.z()) > 0.5;
+        }
+      }
+  CHECK(line_like == 0);
+  CHECK(at_end >= 4);  // the line's pieces, on either side of the fold
+  for (const auto& c : model.info().preparation.components)
+    if (c.role == "solid" && c.bbox_max.x() > 206 && c.bbox_min.x() < 1) CHECK(c.route.rfind("B-rep union", 0) == 0);
+}
+
 TEST_CASE("OpenVSP's truss-braced wing: the struts' skins, pinched at their tips, stay, and the planes and caps inside go", "[models]") {
   // Component 1 is a pod with a strut sewn at each side. Each half of the
   // pod is one skin whose root and tip caps are built in: flat strips folded

@@ -226,6 +226,20 @@ TEST_CASE("a component whose skin folds through itself inside another is united 
   check_one_closed_surface(j["mesh"]);
 }
 
+TEST_CASE("the 777 nosplit meshes with no avoidable triangle under 12 degrees and none turned over", "[models]") {
+  // Its fuselage's end is a vertical line written as a point (test_prepare),
+  // its fin's sides hold strips collapsed onto the trailing edge where the
+  // fin meets the fuselage (junction nodes found by the whole face's nearest
+  // point), and its fin's root and tip sections wobble below the elements
+  // (turning counted at their scale): each of those once left slivers.
+  const test::TempDir dir("b777_nosplit");
+  const auto j = test::run_with_report(test::model_path("b777_nosplit_openvsp.stp") + " -q -o " + (dir / "b.vtu"),
+                                       (dir / "r.json"), 0);
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh"]["avoidable_below_12deg"] == 0);
+  CHECK(j["mesh"]["inverted_triangles"] == 0);
+}
+
 TEST_CASE("a union of meshes that would lose volume is refused, and a piece wholly inside the rest is absorbed", "[models]") {
   // The F-16 from OpenVSP 3.11, every component united as meshes. The tail's
   // centre piece (component 3) is folded (its mesh crosses itself) and lies
