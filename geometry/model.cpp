@@ -236,8 +236,7 @@ CadFile sew_shape(const TopoDS_Shape& shape_in, ModelInfo info, const LoadOption
   auto cad = std::make_shared<CadFile::Impl>();
   TopoDS_Shape shape = shape_in;
   const double diag = bbox_diagonal(shape, info.bbox_min, info.bbox_max);
-  int real_edges = 0;
-  shape = real_degenerate_edges(shape, options.sewing_tolerance_rel * diag, real_edges);
+  shape = real_degenerate_edges(shape, options.sewing_tolerance_rel * diag, info.degenerate_edges_made_real);
   info.free_curves_before_sewing = count_free_curves(shape);
   {
     TopTools_IndexedMapOfShape fm;
@@ -319,6 +318,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
     // Unsewn faces are each a component of their own: repair and union need sewing.
     prepared = prepare_shape(cad.shape, original, cad.area, cad.tolerance, info.diagonal(), options, info.preparation);
     info.preparation.faces_made_planar += info.flat_faces_before_sewing;
+    info.preparation.edges_made_real = info.degenerate_edges_made_real;
   } catch (const Standard_Failure& e) {
     // The preparation only ever improves the model: without it, mesh what was read.
     prepared = PreparedShape{};

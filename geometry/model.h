@@ -62,6 +62,7 @@ struct ModelInfo {
   int faces_before_sewing = 0;   // sewing drops faces degenerate at its tolerance
   int zero_area_faces_removed = 0;  // collapsed faces that cannot carry a mesh
   int flat_faces_before_sewing = 0;  // flat faces put on their plane before sewing (geometry/planar_faces.cpp)
+  int degenerate_edges_made_real = 0;  // before sewing (real_degenerate_edges, geometry/pinch_split.cpp)
   int sewn_edges_mended = 0;         // sewn edges whose tolerance had grown, their curves projected afresh
   int free_curves_before_sewing = 0;
   int free_curves_after_sewing = 0;
