@@ -26,6 +26,9 @@ uint64_t edge_key(int a, int b) {
   return (uint64_t(uint32_t(a)) << 32) | uint32_t(b);
 }
 
+// The edge from a to b, told apart from the edge from b to a.
+uint64_t directed_key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
+
 // uv shifted by whole periods of face f to lie nearest `near`.
 Vec2 unwrap(const Geometry& g, int f, Vec2 uv, const Vec2& near) {
   for (int axis = 0; axis < 2; ++axis) {
@@ -317,15 +320,14 @@ bool same_boundary(const FaceMesh& a, const FaceMesh& b) {
 // the face mesher can walk. False when there is no such node.
 bool held_pinches(const SurfaceMesh& s, const std::vector<int>& all, const std::vector<int>& tris, std::set<int>& held) {
   if (tris.size() == all.size()) return false;
-  auto edge_key_directed = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
   std::unordered_set<uint64_t> directed;
   for (int t : tris)
-    for (int k = 0; k < 3; ++k) directed.insert(edge_key_directed(s.tris[t][k], s.tris[t][(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k) directed.insert(directed_key(s.tris[t][k], s.tris[t][(k + 1) % 3]));
   std::unordered_map<int, int> leaving;  // node -> boundary edges leaving it
   for (int t : tris)
     for (int k = 0; k < 3; ++k) {
       const int a = s.tris[t][k], b = s.tris[t][(k + 1) % 3];
-      if (!directed.count(edge_key_directed(b, a))) ++leaving[a];
+      if (!directed.count(directed_key(b, a))) ++leaving[a];
     }
   bool grew = false;
   for (int t : all)
@@ -381,10 +383,9 @@ std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f,
     ct.push_back(c);
   }
   std::unordered_map<uint64_t, int> directed;
-  auto dkey = [](int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
   for (const auto& c : ct)
     for (int k = 0; k < 3; ++k)
-      if (++directed[dkey(c[k], c[(k + 1) % 3])] > 1) return {};
+      if (++directed[directed_key(c[k], c[(k + 1) % 3])] > 1) return {};
   std::vector<int> next(node.size(), -1);
   std::vector<int> parent(node.size());
   for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
@@ -397,7 +398,7 @@ std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f,
     parent[find(c[2])] = find(c[0]);
     for (int k = 0; k < 3; ++k) {
       const int a = c[k], b = c[(k + 1) % 3];
-      if (directed.count(dkey(b, a))) continue;
+      if (directed.count(directed_key(b, a))) continue;
       if (next[a] >= 0) return {};  // two boundary edges leave one corner
       next[a] = b;
     }

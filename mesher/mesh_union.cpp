@@ -719,11 +719,14 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     }
     for (size_t i = 0; i < faces.size(); ++i) {
       auto off = [&](const Vec2& at) { return (g.eval_face(faces[i], at).p - xyz[v]).norm(); };
-      if (off(uv[i]) <= 0.1 * source) continue;
+      const double start = off(uv[i]);
+      if (start <= 0.1 * source) continue;
       Vec2 at = uv[i];
-      const bool newton = g.project_to_face(faces[i], xyz[v], at);
-      if (!newton) at = uv[i];
-      if ((newton || g.nearest_on_face(faces[i], xyz[v], at)) && off(at) < off(uv[i])) uv[i] = at;
+      if (!g.project_to_face(faces[i], xyz[v], at)) {  // Newton stalled: the whole face
+        at = uv[i];
+        if (!g.nearest_on_face(faces[i], xyz[v], at)) continue;
+      }
+      if (off(at) < start) uv[i] = at;
     }
     for (size_t i = 0; i < faces.size(); ++i) vertex_uv[{uint32_t(v), faces[i]}] = uv[i];
     // The move stays under half the shortest edge at the node and turns no
