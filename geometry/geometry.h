@@ -63,6 +63,12 @@ class Geometry {
   // Period in u / v, 0 when not periodic.
   virtual double face_period_u(int face) const = 0;
   virtual double face_period_v(int face) const = 0;
+  // Span in u / v after which the face meets itself across a seam: its
+  // period, or on a surface closed without one (a wing skin wrapped round
+  // to its trailing edge, both ends one edge) the span of its parameter
+  // range, beyond which eval_face() wraps; 0 when it does not wrap.
+  virtual double face_wrap_u(int face) const { return face_period_u(face); }
+  virtual double face_wrap_v(int face) const { return face_period_v(face); }
   virtual double face_area(int face) const = 0;            // exact (BRepGProp)
   virtual double face_boundary_length(int face) const = 0; // total wire length
   virtual std::vector<FaceLoop> face_loops(int face) const = 0;

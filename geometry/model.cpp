@@ -12,6 +12,7 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCPnts_AbscissaPoint.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomLProp_CLProps.hxx>
@@ -134,6 +135,30 @@ std::vector<double> face_areas(const TopTools_IndexedMapOfShape& faces) {
   return area;
 }
 
+// A seam edge of face f across which a surface closed but not periodic
+// meets itself: its two parameter curves lie the surface's whole range
+// apart in u or v. Recorded as the face's wrap in that direction.
+void note_wrap(OcctFace& d, const TopoDS_Edge& e, const TopoDS_Face& f) {
+  try {
+    double a0, a1, b0, b1, su0, su1, sv0, sv1;
+    const Handle(Geom2d_Curve) one = BRep_Tool::CurveOnSurface(e, f, a0, a1);
+    const Handle(Geom2d_Curve) other = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Reversed()), f, b0, b1);
+    if (one.IsNull() || other.IsNull()) return;
+    d.surface->Bounds(su0, su1, sv0, sv1);
+    const gp_Pnt2d p = one->Value(0.5 * (a0 + a1)), q = other->Value(0.5 * (b0 + b1));
+    const double range[2] = {su1 - su0, sv1 - sv0}, lo[2] = {su0, sv0}, apart[2] = {q.X() - p.X(), q.Y() - p.Y()};
+    const bool closed[2] = {d.surface->IsUClosed() && !d.surface->IsUPeriodic(),
+                            d.surface->IsVClosed() && !d.surface->IsVPeriodic()};
+    for (int axis = 0; axis < 2; ++axis)
+      if (closed[axis] && std::isfinite(range[axis]) && range[axis] > 0 &&
+          std::abs(std::abs(apart[axis]) - range[axis]) <= 1e-9 * range[axis]) {
+        d.wrap[axis] = range[axis];
+        d.wrap_lo[axis] = lo[axis];
+      }
+  } catch (const Standard_Failure&) {
+  }
+}
+
 OcctFace make_face_data(const TopoDS_Face& face, double area, const TopTools_IndexedMapOfShape& edges,
                         const std::vector<OcctCurve>& curves) {
   OcctFace d;
@@ -167,6 +192,7 @@ OcctFace make_face_data(const TopoDS_Face& face, double area, const TopTools_Ind
       use.side = seam && use.reversed ? 1 : 0;
       loop.push_back(use);
       if (!seam && !BRep_Tool::Degenerated(e)) d.boundary_length += curves[use.curve - 1].length;
+      if (seam && !d.surface.IsNull()) note_wrap(d, e, fwd);
     }
     if (!loop.empty()) d.loops.push_back(std::move(loop));
   }
@@ -460,9 +486,23 @@ GeomAdaptor_Surface& Model::Impl::adaptor(int face) const {
   return *a;
 }
 
-SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
+// uv shifted by whole wraps into the parameter range of a surface closed
+// without a period (OcctFace::wrap); unchanged on other faces.
+Vec2 Model::Impl::wrapped(int face, Vec2 uv) const {
+  const OcctFace& d = face_data[face - 1];
+  for (int axis = 0; axis < 2; ++axis) {
+    const double w = d.wrap[axis];
+    if (!(w > 0)) continue;
+    const double from = uv[axis] - d.wrap_lo[axis];
+    if (from < 0 || from > w) uv[axis] = d.wrap_lo[axis] + (from - std::floor(from / w) * w);
+  }
+  return uv;
+}
+
+SurfaceD1 Model::eval_face(int face, const Vec2& at) const {
   gp_Pnt p;
   gp_Vec du, dv;
+  const Vec2 uv = impl_->wrapped(face, at);
   try {
     impl_->adaptor(face).D1(uv.x(), uv.y(), p, du, dv);
   } catch (const Standard_Failure& e) {
@@ -471,8 +511,9 @@ SurfaceD1 Model::eval_face(int face, const Vec2& uv) const {
   return {to_vec(p), to_vec(du), to_vec(dv)};
 }
 
-bool Model::principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const {
+bool Model::principal_curvatures(int face, const Vec2& at, double& k1, double& k2) const {
   const auto& s = impl_->face_data[face - 1].surface;
+  const Vec2 uv = impl_->wrapped(face, at);
   try {
     GeomLProp_SLProps props(s, uv.x(), uv.y(), 2, Precision::Confusion());
     if (!props.IsCurvatureDefined()) return false;
@@ -489,6 +530,14 @@ bool Model::face_reversed(int face) const { return impl_->face_data[face - 1].re
 UVBox Model::face_uv_bounds(int face) const { return impl_->face_data[face - 1].uv_bounds; }
 double Model::face_period_u(int face) const { return impl_->face_data[face - 1].period_u; }
 double Model::face_period_v(int face) const { return impl_->face_data[face - 1].period_v; }
+double Model::face_wrap_u(int face) const {
+  const OcctFace& d = impl_->face_data[face - 1];
+  return d.period_u > 0 ? d.period_u : d.wrap.x();
+}
+double Model::face_wrap_v(int face) const {
+  const OcctFace& d = impl_->face_data[face - 1];
+  return d.period_v > 0 ? d.period_v : d.wrap.y();
+}
 double Model::face_area(int face) const { return impl_->face_data[face - 1].area; }
 double Model::face_boundary_length(int face) const { return impl_->face_data[face - 1].boundary_length; }
 std::vector<FaceLoop> Model::face_loops(int face) const { return impl_->face_data[face - 1].loops; }

@@ -112,6 +112,8 @@ class Model : public Geometry {
   UVBox face_uv_bounds(int face) const override;
   double face_period_u(int face) const override;
   double face_period_v(int face) const override;
+  double face_wrap_u(int face) const override;
+  double face_wrap_v(int face) const override;
   double face_area(int face) const override;
   double face_boundary_length(int face) const override;
   std::vector<FaceLoop> face_loops(int face) const override;

@@ -28,6 +28,9 @@ struct OcctFace {
   bool reversed = false;
   UVBox uv_bounds;
   double period_u = 0, period_v = 0;
+  // A surface closed in u or v without a period, met across a seam edge:
+  // its parameter range there (wrap) from `wrap_lo` (Geometry::face_wrap_u).
+  Vec2 wrap = Vec2::Zero(), wrap_lo = Vec2::Zero();
   double area = 0, boundary_length = 0;
   std::vector<FaceLoop> loops;
 };
@@ -62,6 +65,7 @@ struct Model::Impl {
   // An adaptor is not thread-safe, so each thread has its own, made on first use.
   mutable tbb::enumerable_thread_specific<std::vector<std::unique_ptr<GeomAdaptor_Surface>>> adaptors;
   GeomAdaptor_Surface& adaptor(int face) const;
+  Vec2 wrapped(int face, Vec2 uv) const;
 };
 
 // A file's shape after sewing, before preparation: what read_cad returns.

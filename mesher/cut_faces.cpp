@@ -32,7 +32,7 @@ uint64_t directed_key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uin
 // uv shifted by whole periods of face f to lie nearest `near`.
 Vec2 unwrap(const Geometry& g, int f, Vec2 uv, const Vec2& near) {
   for (int axis = 0; axis < 2; ++axis) {
-    const double period = axis == 0 ? g.face_period_u(f) : g.face_period_v(f);
+    const double period = axis == 0 ? g.face_wrap_u(f) : g.face_wrap_v(f);
     if (period > 0) uv[axis] += period * std::round((near[axis] - uv[axis]) / period);
   }
   return uv;
@@ -45,7 +45,7 @@ std::array<Vec2, 3> canonical_uv(const Geometry& g, int f, std::array<Vec2, 3> u
   const Vec2 c = (u[0] + u[1] + u[2]) / 3.0;
   const Vec2 lo = g.face_uv_bounds(f).lo;
   for (int axis = 0; axis < 2; ++axis) {
-    const double period = axis == 0 ? g.face_period_u(f) : g.face_period_v(f);
+    const double period = axis == 0 ? g.face_wrap_u(f) : g.face_wrap_v(f);
     if (!(period > 0)) continue;
     const double shift = -std::floor((c[axis] - lo[axis]) / period) * period;
     for (Vec2& x : u) x[axis] += shift;
@@ -88,7 +88,7 @@ struct Topology {
     on_seam.assign(s.xyz.size(), 0);
     std::unordered_map<uint64_t, std::array<Vec2, 2>> span;  // (node, face) -> uv min, max
     for (size_t t = 0; t < s.tris.size(); ++t) {
-      if (!(g.face_period_u(s.tri_face[t]) > 0) && !(g.face_period_v(s.tri_face[t]) > 0)) continue;
+      if (!(g.face_wrap_u(s.tri_face[t]) > 0) && !(g.face_wrap_v(s.tri_face[t]) > 0)) continue;
       const std::array<Vec2, 3> corners = canonical_uv(g, s.tri_face[t], s.tri_uv[t]);
       for (int k = 0; k < 3; ++k) {
         const Vec2& uv = corners[k];
@@ -100,8 +100,8 @@ struct Topology {
     for (const auto& [k, box] : span) {
       const int f = static_cast<int>(k & 0xffffffffu), n = static_cast<int>(k >> 32);
       const Vec2 width = box[1] - box[0];
-      if ((g.face_period_u(f) > 0 && width.x() > 0.5 * g.face_period_u(f)) ||
-          (g.face_period_v(f) > 0 && width.y() > 0.5 * g.face_period_v(f)))
+      if ((g.face_wrap_u(f) > 0 && width.x() > 0.5 * g.face_wrap_u(f)) ||
+          (g.face_wrap_v(f) > 0 && width.y() > 0.5 * g.face_wrap_v(f)))
         on_seam[n] = 1;
     }
     std::unordered_set<uint64_t> seen;
@@ -349,7 +349,7 @@ std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f,
                                  const std::unordered_map<uint64_t, int>& chain_of_edge, bool& ok) {
   ok = false;
   // Corners: a node once per period of a periodic face (a seam's nodes twice).
-  const double period[2] = {g.face_period_u(f), g.face_period_v(f)};
+  const double period[2] = {g.face_wrap_u(f), g.face_wrap_v(f)};
   std::vector<int> node;
   std::vector<Vec2> uv;
   std::unordered_map<int, std::vector<int>> of_node;

@@ -365,7 +365,7 @@ void remesh_bands(Tracked& t, const SurfaceMesh& s, const Geometry& g, const std
       const Vec2 c = (s.tri_uv[src][0] + s.tri_uv[src][1] + s.tri_uv[src][2]) / 3.0;
       const UVBox box = g.face_uv_bounds(face);
       for (int axis = 0; axis < 2; ++axis) {
-        const double period = axis == 0 ? g.face_period_u(face) : g.face_period_v(face);
+        const double period = axis == 0 ? g.face_wrap_u(face) : g.face_wrap_v(face);
         if (!(period > 0)) continue;
         const double w = c[axis] - box.lo[axis];
         half |= (w - std::floor(w / period) * period >= 0.5 * period) << axis;
@@ -813,7 +813,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     }
     // On a periodic face, the corners in one period (the first corner's).
     for (int axis = 0; axis < 2; ++axis) {
-      const double period = axis == 0 ? g.face_period_u(face) : g.face_period_v(face);
+      const double period = axis == 0 ? g.face_wrap_u(face) : g.face_wrap_v(face);
       if (period > 0)
         for (int j = 1; j < 3; ++j) uv[j][axis] += period * std::round((uv[0][axis] - uv[j][axis]) / period);
     }

@@ -493,8 +493,8 @@ double SizeQuery::at_xyz(const Vec3& xyz) const {
 SizeQuery size_query_for(const Geometry& g, const BackgroundMesh& bg, std::vector<double> h) {
   std::vector<double> pu(g.num_faces()), pv(g.num_faces());
   for (int f = 1; f <= g.num_faces(); ++f) {
-    pu[f - 1] = g.face_period_u(f);
-    pv[f - 1] = g.face_period_v(f);
+    pu[f - 1] = g.face_wrap_u(f);
+    pv[f - 1] = g.face_wrap_v(f);
   }
   SizeQuery query(bg, std::move(h), std::move(pu), std::move(pv));
   query.set_surface([&g](int face, const Vec2& uv) { return g.eval_face(face, uv).p; });

@@ -266,6 +266,39 @@ TEST_CASE("OpenVSP's one-piece surfaces: a fin that is one face, its caps folded
   for (size_t k : {0, 1, 3, 4}) CHECK(p.components[k].role == "solid");
 }
 
+TEST_CASE("OpenVSP's one-piece skins, closed round their trailing edge without a period, wrap there", "[models]") {
+  // Each skin's B-spline runs from the trailing edge round the leading edge
+  // back to it, its two ends one seam edge, but the surface is not periodic:
+  // what a cut across that seam sees beyond the parameter range is the
+  // surface from its other end.
+  const Model model = described("b777_onepiece_openvsp.stp");
+  const double diag = (model.info().bbox_max - model.info().bbox_min).norm();
+  int wrapped = 0;
+  for (int f = 1; f <= model.num_faces(); ++f) {
+    CHECK(model.face_wrap_u(f) == model.face_period_u(f));
+    if (model.face_period_v(f) > 0 || !(model.face_wrap_v(f) > 0)) {
+      CHECK(model.face_wrap_v(f) == model.face_period_v(f));
+      continue;
+    }
+    ++wrapped;
+    const UVBox box = model.face_uv_bounds(f);
+    const double w = model.face_wrap_v(f);
+    CHECK(w == Approx(box.hi.y() - box.lo.y()).epsilon(1e-9));
+    for (double su : {0.2, 0.5, 0.8}) {
+      const double u = box.lo.x() + su * (box.hi.x() - box.lo.x());
+      // The two sides of the seam are one curve.
+      CHECK((model.eval_face(f, Vec2(u, box.lo.y())).p - model.eval_face(f, Vec2(u, box.hi.y())).p).norm() <
+            1e-6 * diag);
+      for (double sv : {0.1, 0.3, 0.7}) {
+        const Vec3 p = model.eval_face(f, Vec2(u, box.lo.y() + sv * w)).p;
+        CHECK((model.eval_face(f, Vec2(u, box.lo.y() + (sv + 1) * w)).p - p).norm() < 1e-9 * diag);
+        CHECK((model.eval_face(f, Vec2(u, box.lo.y() + (sv - 1) * w)).p - p).norm() < 1e-9 * diag);
+      }
+    }
+  }
+  CHECK(wrapped == 3);  // the tail's two skins and the fuselage; the rest split at their folds
+}
+
 TEST_CASE("OpenVSP's one-piece fin: its caps, halves folded onto the chord, become flat faces with no point-like curve", "[models]") {
   // The fin of this export is one skin and one cap face per end; cut at the
   // caps' turn, each cap half is a B-spline ruled between the chord line and

@@ -244,6 +244,20 @@ TEST_CASE("the 777 nosplit meshes with no avoidable triangle under 12 degrees an
   CHECK(j["mesh"]["inverted_triangles"] == 0);
 }
 
+TEST_CASE("the 777 one-piece's tail, cut by the fuselage across the seam its skins close on, has no triangle turned over", "[models]") {
+  // Its tail skins run from the trailing edge round to it again on a
+  // surface that is closed there without a period; the fuselage crosses
+  // that seam. The cut faces' regions are walked across it as across a
+  // periodic seam (Geometry::face_wrap_v), so the triangles the cut crosses
+  // are remeshed instead of kept as bands of slivers, some turned over.
+  const test::TempDir dir("b777_onepiece");
+  const auto j = test::run_with_report(
+      test::model_path("b777_onepiece_openvsp.stp") + " -q -o " + (dir / "b.vtu"), (dir / "r.json"), 0);
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh"]["inverted_triangles"] == 0);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 8);
+}
+
 TEST_CASE("a union of meshes that would lose volume is refused, and a piece wholly inside the rest is absorbed", "[models]") {
   // The F-16 from OpenVSP 3.11, every component united as meshes. The tail's
   // centre piece (component 3) is folded (its mesh crosses itself) and lies
