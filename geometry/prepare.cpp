@@ -38,6 +38,9 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <ShapeFix_Solid.hxx>
+#include <ShapeBuild_ReShape.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -299,24 +302,49 @@ bool same_spot(double area_a, const gp_Pnt& centre_a, const Bnd_Box& box_a, doub
   return true;
 }
 
-Coincident coincident_pairs(const FaceList& faces, double tol) {
-  std::vector<FaceProps> p(faces.size());
-  for (size_t i = 0; i < faces.size(); ++i) {
-    GProp_GProps g;
-    BRepGProp::SurfaceProperties(faces[i], g);
-    p[i].area = std::abs(g.Mass());
-    p[i].centre = g.CentreOfMass();
-    BRepBndLib::Add(faces[i], p[i].box, false);
-    if (p[i].box.IsVoid()) p[i].area = 0;
-    BRepAdaptor_Surface s(faces[i], false);
-    if (s.GetType() == GeomAbs_Plane) {
-      const gp_Pln pln = s.Plane();
-      p[i].planar = true;
-      p[i].normal = faces[i].Orientation() == TopAbs_REVERSED ? pln.Axis().Direction().Reversed()
-                                                             : pln.Axis().Direction();
-      p[i].offset = gp_Vec(pln.Location().XYZ()).Dot(gp_Vec(p[i].normal));
+// Area, centre, box and plane of f. A B-spline flat within `tol` (an
+// OpenVSP cap) counts as planar.
+FaceProps face_props(const TopoDS_Face& f, double tol) {
+  FaceProps p;
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(f, g);
+  p.area = std::abs(g.Mass());
+  p.centre = g.CentreOfMass();
+  BRepBndLib::Add(f, p.box, false);
+  if (p.box.IsVoid()) p.area = 0;
+  BRepAdaptor_Surface s(f, false);
+  gp_Pln pln;
+  if (s.GetType() == GeomAbs_Plane) {
+    pln = s.Plane();
+    p.planar = true;
+  } else if (s.GetType() == GeomAbs_BSplineSurface || s.GetType() == GeomAbs_BezierSurface) {
+    // A surface collapsed onto a line or a point has no plane (OCCT throws).
+    try {
+      const Handle(Geom_Surface) surface = BRep_Tool::Surface(f);
+      if (!surface.IsNull()) {
+        GeomLib_IsPlanarSurface flat(surface, tol);
+        if (flat.IsPlanar()) pln = flat.Plan(), p.planar = true;
+      }
+    } catch (const Standard_Failure&) {
+      p.planar = false;
     }
   }
+  if (p.planar) {
+    p.normal = f.Orientation() == TopAbs_REVERSED ? pln.Axis().Direction().Reversed() : pln.Axis().Direction();
+    p.offset = gp_Vec(pln.Location().XYZ()).Dot(gp_Vec(p.normal));
+  }
+  return p;
+}
+
+// True when planar faces with props a and b lie on one plane (either way round).
+bool same_plane(const FaceProps& a, const FaceProps& b, double tol) {
+  const double dot = a.normal.Dot(b.normal);
+  return std::abs(dot) >= 1 - 1e-9 && std::abs(a.offset - (dot > 0 ? 1 : -1) * b.offset) <= tol;
+}
+
+Coincident coincident_pairs(const FaceList& faces, double tol) {
+  std::vector<FaceProps> p(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) p[i] = face_props(faces[i], tol);
   Coincident out;
   std::vector<bool> used(faces.size(), false);
   for (size_t i = 0; i < faces.size(); ++i)
@@ -336,9 +364,7 @@ Coincident coincident_pairs(const FaceList& faces, double tol) {
     if (used[i] || !p[i].planar || !(p[i].area > 0)) continue;
     FaceGroup* into = nullptr;
     for (auto& c : clusters) {
-      const FaceProps& q = p[c.front()];
-      const double dot = q.normal.Dot(p[i].normal);
-      if (std::abs(dot) < 1 - 1e-9 || std::abs(q.offset - (dot > 0 ? 1 : -1) * p[i].offset) > tol) continue;
+      if (!same_plane(p[c.front()], p[i], tol)) continue;
       const bool touches = std::any_of(c.begin(), c.end(), [&](int j) {
         Bnd_Box grown = p[j].box;
         grown.Enlarge(tol);
@@ -371,10 +397,10 @@ Coincident coincident_pairs(const FaceList& faces, double tol) {
       sum(one, area_one, centre_one, box_one);
       sum(other, area_other, centre_other, box_other);
       // Each part a cap cut along its own line and approximated apart: their
-      // areas agree to a part in a thousand, their centres to a hundredth of
+      // areas agree to a part in a hundred, their centres to a hundredth of
       // their size, their boxes within `tol` (the repair sews the result
       // before it keeps it).
-      if (same_spot(area_one, centre_one, box_one, area_other, centre_other, box_other, tol, 1e-3, 1e-2)) {
+      if (same_spot(area_one, centre_one, box_one, area_other, centre_other, box_other, tol, 1e-2, 1e-2)) {
         out.push_back({one, other});
         break;
       }
@@ -518,6 +544,123 @@ struct Repair {
   int duplicates = 0, internal = 0, caps = 0;
   int half_model_axis = -1;  // the half-model plane its free loops lie on
 };
+
+// Components that meet face to face: faces of one lie on faces of another
+// (a wing's two halves, each closed by its own root cap on the plane
+// between them, one of them perhaps left open by the export): a single face
+// on a single face (same area, centre and box within `tol`), or on one
+// plane the faces of each, cut along different lines, covering the same
+// region (areas within a part in a hundred, centres within a hundredth of
+// their size). Neither is a wall: the two go through the repair as one
+// body, which takes such faces out and sews the halves together. Returns
+// pairs (a, b), a < b, each component in one pair at most.
+std::vector<std::pair<int, int>> face_to_face(const std::vector<TopoDS_Shape>& parts, double tol) {
+  std::vector<FaceList> faces(parts.size());
+  std::vector<std::vector<FaceProps>> props(parts.size());
+  std::vector<Bnd_Box> box(parts.size());
+  for (size_t k = 0; k < parts.size(); ++k) {
+    faces[k] = faces_of(parts[k]);
+    BRepBndLib::Add(parts[k], box[k], false);
+    box[k].Enlarge(tol);
+  }
+  // Props of a face only once some other component's box holds its box.
+  const auto held = [&](size_t k, size_t i, size_t other) {
+    Bnd_Box b;
+    BRepBndLib::Add(faces[k][i], b, false);
+    double q[6];
+    if (b.IsVoid()) return false;
+    b.Get(q[0], q[1], q[2], q[3], q[4], q[5]);
+    return !box[other].IsOut(gp_Pnt(q[0], q[1], q[2])) && !box[other].IsOut(gp_Pnt(q[3], q[4], q[5]));
+  };
+  std::vector<std::vector<char>> known(parts.size());
+  for (size_t k = 0; k < parts.size(); ++k) known[k].assign(faces[k].size(), 0), props[k].resize(faces[k].size());
+  const auto prop = [&](size_t k, size_t i) -> const FaceProps& {
+    if (!known[k][i]) {
+      try {
+        props[k][i] = face_props(faces[k][i], tol);
+      } catch (const Standard_Failure&) {
+        props[k][i] = FaceProps{};  // no area: matches nothing
+      }
+      known[k][i] = 1;
+    }
+    return props[k][i];
+  };
+  std::vector<std::pair<int, int>> out;
+  std::vector<char> paired(parts.size(), 0);
+  for (size_t a = 0; a < parts.size(); ++a)
+    for (size_t b = a + 1; b < parts.size() && !paired[a]; ++b) {
+      if (paired[b] || box[a].IsOut(box[b])) continue;
+      std::vector<size_t> on_a, on_b;  // faces of each within the other's box
+      for (size_t i = 0; i < faces[a].size(); ++i)
+        if (held(a, i, b)) on_a.push_back(i);
+      for (size_t j = 0; j < faces[b].size(); ++j)
+        if (held(b, j, a)) on_b.push_back(j);
+      bool meet = false;
+      for (size_t i : on_a)
+        for (size_t j : on_b) {
+          const FaceProps &x = prop(a, i), &y = prop(b, j);
+          meet = meet || same_spot(x.area, x.centre, x.box, y.area, y.centre, y.box, tol);
+        }
+      // On each plane of a's faces, the faces of a and of b there.
+      for (size_t i = 0; i < on_a.size() && !meet; ++i) {
+        const FaceProps& x = prop(a, on_a[i]);
+        if (!x.planar || !(x.area > 0)) continue;
+        double area[2] = {0, 0};
+        gp_XYZ moment[2];
+        Bnd_Box group[2];
+        for (int side = 0; side < 2; ++side)
+          for (size_t j : side == 0 ? on_a : on_b) {
+            const FaceProps& y = prop(side == 0 ? a : b, j);
+            if (!y.planar || !same_plane(x, y, tol)) continue;
+            area[side] += y.area, moment[side] += y.area * y.centre.XYZ(), group[side].Add(y.box);
+          }
+        if (area[0] > 0 && area[1] > 0)
+          meet = same_spot(area[0], gp_Pnt(moment[0] / area[0]), group[0], area[1], gp_Pnt(moment[1] / area[1]),
+                           group[1], tol, 1e-2, 1e-2);
+      }
+      if (!meet) continue;
+      paired[a] = paired[b] = 1;
+      out.emplace_back(static_cast<int>(a), static_cast<int>(b));
+    }
+  return out;
+}
+
+// Closed edges shorter than the sewing tolerance dropped from their wires:
+// what sewing leaves where the ends of two curves met a few tolerances
+// apart (a loop of microns at the leading edge where two halves of a tail
+// were sewn). Both its ends are one vertex, so the wires stay closed
+// without it; kept, the mesher would put a closed curve's three segments on
+// one spot and the faces on either side would fold there. `count` gets the
+// edges dropped.
+TopoDS_Shape drop_small_loops(const TopoDS_Shape& shape, double tol, const Follow& follow, int& count) {
+  count = 0;
+  Handle(ShapeBuild_ReShape) reshape = new ShapeBuild_ReShape;
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+  try {
+    for (int i = 1; i <= edges.Extent(); ++i) {
+      const TopoDS_Edge& e = TopoDS::Edge(edges(i));
+      TopoDS_Vertex v0, v1;
+      TopExp::Vertices(e, v0, v1);
+      if (BRep_Tool::Degenerated(e) || v0.IsNull() || !v0.IsSame(v1)) continue;
+      const BRepAdaptor_Curve c(e);
+      if (!c.Is3DCurve() || !(GCPnts_AbscissaPoint::Length(c) < tol)) continue;
+      reshape->Remove(e);
+      ++count;
+    }
+    if (count == 0) return shape;
+    const TopoDS_Shape result = reshape->Apply(shape);
+    if (result.IsNull() || !BRepCheck_Analyzer(result).IsValid()) return count = 0, shape;
+    for (const auto& f : faces_of(shape)) {
+      const TopoDS_Shape now = reshape->Apply(f);
+      if (!now.IsNull() && now.ShapeType() == TopAbs_FACE && !now.IsSame(f)) follow(f, TopoDS::Face(now));
+    }
+    return result;
+  } catch (const Standard_Failure&) {
+    count = 0;
+    return shape;
+  }
+}
 
 // Faces of `faces` and of `more`.
 FaceList joined(FaceList faces, const FaceList& more) {
@@ -868,9 +1011,22 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     if (out.source.IsBound(from) && !out.source.IsBound(to)) out.source.Bind(to, out.source(from));
   };
   Stopwatch step;
+  // Bodies that meet face to face are repaired as one: the first holds the
+  // faces of both, the second is a part of it.
+  std::vector<TopoDS_Shape> joined_parts = parts;
+  const std::vector<std::pair<int, int>> joins = face_to_face(parts, tol);
+  for (const auto& [a, b] : joins) {
+    FaceList both = faces_of(parts[a]);
+    for (const auto& f : faces_of(parts[b])) both.push_back(f);
+    joined_parts[a] = compound_of(both);
+    joined_parts[b] = TopoDS_Shape();
+    auto& ids = info.components[a].face_ids;
+    ids.insert(ids.end(), info.components[b].face_ids.begin(), info.components[b].face_ids.end());
+  }
   for (size_t k = 0; k < parts.size(); ++k) {
     Component& c = info.components[k];
-    const TopoDS_Shape& s = parts[k];
+    const TopoDS_Shape& s = joined_parts[k];
+    if (s.IsNull()) continue;  // joined to another body (joins)
     // A body closed with faces back to back inside it (two halves sewn
     // together with both root caps) bounds no volume the fuse can use: it
     // goes through the repair, which takes such pairs out.
@@ -1052,6 +1208,12 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
     for (const auto& s : solids) b.Add(all, s);
     result = all;
   }
+  for (const auto& [a, b] : joins) {
+    Component& c = info.components[b];
+    c.role = info.components[a].role;
+    const std::string& with = info.components[a].route;
+    c.route = "one body with component " + std::to_string(a + 1) + " (faces back to back)" + (with.empty() ? "" : ": " + with);
+  }
   info.imprint_seconds = step.lap();
   std::sort(info.not_united.begin(), info.not_united.end());
   info.not_united.erase(std::unique(info.not_united.begin(), info.not_united.end()), info.not_united.end());
@@ -1071,6 +1233,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   info.faces_split_at_folds += folds;
   // Flat faces on their plane: no region of zero area in their uv.
   out.shape = planar_faces(out.shape, tol, out.source, follow, info.faces_made_planar);
+  out.shape = drop_small_loops(out.shape, tol, follow, info.small_loops_dropped);
   info.faces_after = static_cast<int>(faces_of(out.shape).size());
   info.finish_seconds = step.lap();
   return out;

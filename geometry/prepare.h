@@ -62,6 +62,7 @@ struct Preparation {
   double seconds_budget = 0;          // the union's time budget
   int faces_split_at_folds = 0;       // faces split along a knot line where they fold within an element
   int strip_faces_collapsed = 0;      // faces narrower than twice the sewing tolerance made one curve
+  int small_loops_dropped = 0;        // closed edges shorter than the sewing tolerance
   int faces_made_planar = 0;          // faces whose flat B-spline (or other) surface became a plane
   int edges_made_real = 0;            // degenerated edges the surface maps onto a line, made real edges there
   int faces_before = 0, faces_after = 0;

@@ -51,6 +51,7 @@ nlohmann::json report_json(const RunReport& r) {
                       {"faces_split_at_folds", prep.faces_split_at_folds},
                       {"faces_made_planar", prep.faces_made_planar},
                       {"strip_faces_collapsed", prep.strip_faces_collapsed},
+                      {"small_loops_dropped", prep.small_loops_dropped},
                       {"edges_made_real", prep.edges_made_real},
                       {"faces_before", prep.faces_before},
                       {"faces_after", prep.faces_after},

@@ -104,14 +104,16 @@ TEST_CASE("info reports unit, bounding box, counts and free curves") {
   CHECK(r.out.find("unit:        ft") != std::string::npos);
   CHECK(r.out.find("free curves: 212 before sewing, 0 after") != std::string::npos);
   // Seven components after sewing; the three open ones close once their
-  // internal planes and the caps between their halves are taken out.
+  // internal planes and the caps between their halves are taken out. The
+  // wing (7) and the half wing lying on it (2) are repaired as one body.
   CHECK(r.out.find("components:  7 after sewing") != std::string::npos);
   CHECK(r.out.find("10 free curves, area 343.2") != std::string::npos);
   CHECK(r.out.find("-> solid (6 faces taken out)") != std::string::npos);
+  CHECK(r.out.find("-> solid, one body with component 2 (faces back to back)\n") != std::string::npos);
   // --info describes the file: the repair, not the union (tests/test_union.cpp).
-  CHECK(r.out.find("union:       not run: --info describes the file, a mesh run unites its components; 4 duplicate "
+  CHECK(r.out.find("union:       not run: --info describes the file, a mesh run unites its components; 8 duplicate "
                    "and 5 internal faces removed; 0 split at folds or parameter jumps; 0 flat faces put on their plane; "
-                   "69 faces before, 60 after") !=
+                   "69 faces before, 56 after") !=
         std::string::npos);
   const auto raw = test::run_sizemesh("--info --no-union " + test::model_path("f16_openvsp.stp"));
   REQUIRE(raw.status == 0);

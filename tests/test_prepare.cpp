@@ -165,7 +165,11 @@ TEST_CASE("config face ids keep addressing the faces as sewn after the union") {
 TEST_CASE("two touching boxes give one closed surface with no internal face") {
   const Model model = model_from_shape(compound({BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 1.0, 1.0, 1.0).Shape(),
                                                  BRepPrimAPI_MakeBox(gp_Pnt(1, 0, 0), 1.0, 1.0, 1.0).Shape()}));
-  CHECK(model.info().preparation.fused);
+  // Face to face, the two are repaired as one body: the faces at x = 1 go.
+  const Preparation& p = model.info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.components[0].faces_removed == 2);
+  CHECK(p.components[1].route.rfind("one body with component 1 (faces back to back)", 0) == 0);
   CHECK(model.closed());
   CHECK(model.num_faces() == 10);  // two ends, four sides in two pieces each
   CHECK(total_area(model) == Approx(10.0).epsilon(1e-12));
