@@ -383,6 +383,7 @@ class Front {
     d /= dl;
     Candidate ideal;
     ideal.uv = m + height * d;
+    if (pole_edge) ideal.uv = off_pole(m, sm, perp, ideal.uv);
     bool ideal_ok = std::isfinite(ideal.uv.x()) && std::isfinite(ideal.uv.y());
     try {  // the ideal point may fall outside the surface's parameter range
       if (ideal_ok) ideal.s = fs_.eval(ideal.uv);
@@ -483,6 +484,48 @@ class Front {
     const int bc = find_edge(b, cn);
     if (bc >= 0) kill_edge(bc); else add_edge(cn, b);
     return true;
+  }
+
+  // The ideal point off a pole edge, one size from the pole in space, along
+  // the edge's normal in uv. The metric on the pole is singular: where the
+  // surface closes in like a cone it still has a length across the pole
+  // line, but where it closes in quadratically (a tail cone ending in a
+  // point whose u-derivative vanishes there too) it has none, and a step
+  // in the pole's metric runs off the surface. Bisection on the distance
+  // from the pole; `fallback` where the surface cannot be evaluated.
+  Vec2 off_pole(const Vec2& m, const SurfaceSample& pole, const Vec2& perp, const Vec2& fallback) {
+    const double reach = (hi_ - lo_).norm();
+    if (!(perp.norm() > 0) || !(reach > 0)) return fallback;
+    const Vec2 dir = perp.normalized();
+    // Distance from the pole at uv m + t dir, in sizes wanted there.
+    auto sizes_away = [&](double t) {
+      const SurfaceSample q = fs_.eval(m + t * dir);
+      return (q.p - pole.p).norm() / q.h;
+    };
+    try {
+      // A bracket [lo, hi] from a thousandth of the face's uv span, halved
+      // or doubled, then halved to a hundredth of its length.
+      double lo = 0, hi = 1e-3 * reach;
+      if (sizes_away(hi) >= 1) {
+        for (int it = 0; it < 60 && lo == 0; ++it) {
+          if (sizes_away(0.5 * hi) < 1) lo = 0.5 * hi;
+          else hi *= 0.5;
+        }
+      } else {
+        while (sizes_away(hi) < 1) {
+          if (hi >= reach) return fallback;
+          lo = hi;
+          hi = std::min(2 * hi, reach);
+        }
+      }
+      for (int it = 0; it < 20 && hi - lo > 0.01 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (sizes_away(mid) < 1 ? lo : hi) = mid;
+      }
+      return m + hi * dir;
+    } catch (const EvaluationError&) {
+      return fallback;
+    }
   }
 
   // Tremel procedure 1: ideal point placed in space off the edge's midpoint,

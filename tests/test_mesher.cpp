@@ -260,6 +260,52 @@ TEST_CASE("a point beside a strip collapsed onto a line is found on the surface 
   CHECK(uv.y() == Approx(1.5).margin(1e-9));
 }
 
+TEST_CASE("a cone closing in quadratically to its tip meshes with triangles of the size at the tip, none turned over", "[mesher]") {
+  // Degree 2 along u, its last two rows of poles both on the tip: S_u and
+  // S_v vanish there together (as an OpenVSP fuselage's tail cone written to
+  // end in a point), so the metric on the pole line is zero both ways. The
+  // front's ideal point off the pole is placed one size from the tip in
+  // space; taken in the pole's metric it ran off the surface and the tip's
+  // fan spanned the cone.
+  const int ring = 9;  // a square ring in v, closed (last pole = first)
+  TColgp_Array2OfPnt poles(1, 3, 1, ring);
+  for (int j = 1; j <= ring; ++j) {
+    const double a = 2 * M_PI * (j - 1) / (ring - 1);
+    poles(1, j) = gp_Pnt(0, 2 * std::cos(a), 2 * std::sin(a));
+    poles(2, j) = gp_Pnt(4, 0, 0);
+    poles(3, j) = gp_Pnt(4, 0, 0);
+  }
+  TColStd_Array1OfReal uk(1, 2), vk(1, ring);
+  TColStd_Array1OfInteger um(1, 2), vm(1, ring);
+  uk(1) = 0, uk(2) = 1, um(1) = um(2) = 3;
+  for (int j = 1; j <= ring; ++j) vk(j) = j - 1, vm(j) = 1;
+  vm(1) = vm(ring) = 2;
+  Handle(Geom_BSplineSurface) cone = new Geom_BSplineSurface(poles, uk, vk, um, vm, 2, 1);
+  LoadOptions as_read;  // the surface as written, not split at its knots
+  as_read.sew = false;
+  as_read.unite = false;
+  const Model model = model_from_shape(BRepBuilderAPI_MakeFace(cone, 1e-7).Face(), as_read);
+  REQUIRE(model.num_faces() == 1);
+  REQUIRE(model.eval_face(1, Vec2(1, 0.5)).du.norm() < 1e-12);  // the tip: no length along u
+  const double h = 0.25;
+  const UniformSize size(h);
+  const SurfaceMesh m = mesh_surface(model, size);
+  REQUIRE(m.failures.empty());
+  const MeshQuality q = mesh_quality(m, model, size);
+  CHECK(q.inverted == 0);
+  // Every edge at the tip within twice the size.
+  const Vec3 tip(4, 0, 0);
+  int at_tip = 0;
+  for (const auto& t : m.tris)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 &a = m.xyz[t[k]], &b = m.xyz[t[(k + 1) % 3]];
+      if ((a - tip).norm() > 1e-9) continue;
+      ++at_tip;
+      CHECK((b - a).norm() < 2 * h);
+    }
+  CHECK(at_tip >= 3);
+}
+
 TEST_CASE("a sharp corner gets one thin triangle: long first segments where its wedge is a quarter element wide", "[mesher]") {
   // A prism over a triangle whose apex angle is 4 degrees: with equal steps
   // of h along both sides, the first ~6 triangles of each cap's wedge are

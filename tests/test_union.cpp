@@ -489,6 +489,11 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   CHECK(j["preparation"]["not_united"].empty());
   CHECK(j["mesh_union"]["united"] == 7);
   check_one_closed_surface(j["mesh"]);
+  // Its fuselage ends in a point where the surface's u-derivative vanishes
+  // too: the front placed the tip's fan from a zero metric, and triangles
+  // there turned over (test_mesher, the quadratic cone).
+  CHECK(j["mesh"]["inverted_triangles"] == 0);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 21);
   // Junction nodes no projection reaches are counted apart: the largest gap
   // is that of the nodes on their surfaces, a number.
   const auto& u = j["mesh_union"];
