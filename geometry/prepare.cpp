@@ -558,15 +558,16 @@ std::vector<std::pair<int, int>> face_to_face(const std::vector<TopoDS_Shape>& p
   std::vector<FaceList> faces(parts.size());
   std::vector<std::vector<FaceProps>> props(parts.size());
   std::vector<Bnd_Box> box(parts.size());
+  std::vector<std::vector<Bnd_Box>> face_box(parts.size());
   for (size_t k = 0; k < parts.size(); ++k) {
     faces[k] = faces_of(parts[k]);
     BRepBndLib::Add(parts[k], box[k], false);
     box[k].Enlarge(tol);
+    for (const auto& f : faces[k]) BRepBndLib::Add(f, face_box[k].emplace_back(), false);
   }
   // Props of a face only once some other component's box holds its box.
   const auto held = [&](size_t k, size_t i, size_t other) {
-    Bnd_Box b;
-    BRepBndLib::Add(faces[k][i], b, false);
+    const Bnd_Box& b = face_box[k][i];
     double q[6];
     if (b.IsVoid()) return false;
     b.Get(q[0], q[1], q[2], q[3], q[4], q[5]);
@@ -1016,9 +1017,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   std::vector<TopoDS_Shape> joined_parts = parts;
   const std::vector<std::pair<int, int>> joins = face_to_face(parts, tol);
   for (const auto& [a, b] : joins) {
-    FaceList both = faces_of(parts[a]);
-    for (const auto& f : faces_of(parts[b])) both.push_back(f);
-    joined_parts[a] = compound_of(both);
+    joined_parts[a] = compound_of(joined(faces_of(parts[a]), faces_of(parts[b])));
     joined_parts[b] = TopoDS_Shape();
     auto& ids = info.components[a].face_ids;
     ids.insert(ids.end(), info.components[b].face_ids.begin(), info.components[b].face_ids.end());

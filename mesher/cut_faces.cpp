@@ -348,7 +348,8 @@ std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f,
                                  const std::vector<Chain>& chains, const std::vector<int>& chain_of_edge_owner,
                                  const std::unordered_map<uint64_t, int>& chain_of_edge, bool& ok) {
   ok = false;
-  // Corners: a node once per period of a periodic face (a seam's nodes twice).
+  // Corners: a node once per wrap of a face that meets itself across a seam
+  // (Geometry::face_wrap_u/v: a seam's nodes twice).
   const double period[2] = {g.face_wrap_u(f), g.face_wrap_v(f)};
   std::vector<int> node;
   std::vector<Vec2> uv;
