@@ -537,6 +537,105 @@ bool merge_coincident(SurfaceMesh& s, std::vector<std::array<int, 2>>& junction,
   return true;
 }
 
+// The parameter of curve c nearest x: the nearest of a few samples, then
+// Newton on (C(t) - x) . C'(t) = 0 within the curve's range.
+bool nearest_on_curve(const Geometry& g, int c, const Vec3& x, double& t) {
+  double t0, t1;
+  g.curve_range(c, t0, t1);
+  if (!(t1 > t0)) return false;
+  constexpr int kSamples = 64;
+  double best = HUGE_VAL;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double s = t0 + (t1 - t0) * k / kSamples;
+    const double d = (g.eval_curve(c, s) - x).squaredNorm();
+    if (d < best) best = d, t = s;
+  }
+  for (int it = 0; it < 20; ++it) {
+    const Vec3 d = g.eval_curve(c, t) - x, tan = g.curve_tangent(c, t);
+    const double tt = tan.squaredNorm();
+    if (!(tt > 0)) break;
+    const double step = d.dot(tan) / tt;
+    t = std::clamp(t - step, t0, t1);
+    if (std::abs(step) <= 1e-12 * (t1 - t0)) break;
+  }
+  return std::isfinite(t);
+}
+
+// A CAD curve node next to a junction corner on the same curve, closer to
+// it than a third of its other segment, moved along the curve to midway
+// between its other neighbour and the corner: the cut split a segment near
+// one end, and the stub left would be the short side of a sliver in both
+// faces. Only nodes whose faces are all the corner's (faces the junction
+// cuts, meshed again) move; their triangles' uv follow. True when one moved.
+bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction) {
+  bool moved = false;
+  std::vector<char> on_junction(s.xyz.size(), 0);
+  for (const auto& [a, b] : junction) on_junction[a] = on_junction[b] = 1;
+  std::vector<std::vector<int>> node_faces(s.xyz.size()), node_tris(s.xyz.size());
+  std::unordered_map<uint64_t, std::vector<int>> edge_faces;
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.tris[t][k], f = s.tri_face[t];
+      node_tris[a].push_back(static_cast<int>(t));
+      if (std::find(node_faces[a].begin(), node_faces[a].end(), f) == node_faces[a].end()) node_faces[a].push_back(f);
+      edge_faces[edge_key(a, s.tris[t][(k + 1) % 3])].push_back(f);
+    }
+  // Neighbours of a along edges between two faces (the face boundaries through a).
+  auto boundary_neighbours = [&](int a) {
+    std::vector<int> out;
+    for (int t : node_tris[a])
+      for (int k = 0; k < 3; ++k) {
+        const int b = s.tris[t][k];
+        if (b == a || std::find(out.begin(), out.end(), b) != out.end()) continue;
+        const auto& f = edge_faces[edge_key(a, b)];
+        if (f.size() == 2 && f[0] != f[1]) out.push_back(b);
+      }
+    return out;
+  };
+  for (size_t c = 0; c < s.xyz.size(); ++c) {
+    if (!on_junction[c] || s.node_dim[c] != 2 || node_faces[c].size() < 3) continue;
+    for (int a : boundary_neighbours(static_cast<int>(c))) {
+      if (s.node_dim[a] != 1 || on_junction[a]) continue;
+      bool inside = true;
+      for (int f : node_faces[a])
+        inside = inside && std::find(node_faces[c].begin(), node_faces[c].end(), f) != node_faces[c].end();
+      const std::vector<int> along = boundary_neighbours(a);
+      if (!inside || along.size() != 2) continue;
+      const int p = along[0] == static_cast<int>(c) ? along[1] : along[0];
+      const double stub = (s.xyz[a] - s.xyz[c]).norm(), other = (s.xyz[p] - s.xyz[a]).norm();
+      if (!(stub < other / 3)) continue;
+      const Vec3 target = 0.5 * (s.xyz[p] + s.xyz[c]);
+      double t = 0;
+      Vec3 x;
+      try {
+        if (!nearest_on_curve(g, s.node_entity[a], target, t)) continue;
+        x = g.eval_curve(s.node_entity[a], t);
+      } catch (const EvaluationError&) {
+        continue;
+      }
+      if (!((x - target).norm() < 0.25 * other)) continue;
+      std::map<int, Vec2> uv;  // per face of a, projected from its uv in a triangle there
+      bool projected = true;
+      for (int t2 : node_tris[a]) {
+        const int f = s.tri_face[t2];
+        if (uv.count(f)) continue;
+        const int k = static_cast<int>(std::find(s.tris[t2].begin(), s.tris[t2].end(), a) - s.tris[t2].begin());
+        Vec2 w = s.tri_uv[t2][k];
+        projected = projected && g.project_to_face(f, x, w);
+        uv[f] = w;
+      }
+      if (!projected) continue;
+      s.xyz[a] = x;
+      for (int t2 : node_tris[a]) {
+        const int k = static_cast<int>(std::find(s.tris[t2].begin(), s.tris[t2].end(), a) - s.tris[t2].begin());
+        s.tri_uv[t2][k] = unwrap(g, s.tri_face[t2], uv[s.tri_face[t2]], s.tri_uv[t2][k]);
+      }
+      moved = true;
+    }
+  }
+  return moved;
+}
+
 // The junction's nodes, and each one's largest distance from the surfaces
 // of the faces around it; `off` is the distance that counts as off them.
 void measure_junction(const SurfaceMesh& s, const Geometry& g, MeshUnionResult& u, double off) {
@@ -563,7 +662,8 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   Eigen::AlignedBox3d box;
   for (const Vec3& x : s.xyz) box.extend(x);
   const double tol = 1e-13 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
-  const bool merged = merge_coincident(s, junction, 1e3 * tol);
+  bool merged = merge_coincident(s, junction, 1e3 * tol);
+  merged = space_curve_nodes(s, g, junction) || merged;
   const Topology topo(s, g, junction);
   std::vector<Chain> chains = junction_chains(s, topo);
   std::vector<Vec3> xyz = s.xyz;
