@@ -53,8 +53,9 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 }
 
 // Triangles under 12 degrees that no mesh of this CAD can avoid: at a sharp
-// corner (a B-rep point where the face's corner, the angle sum of that face's
-// triangles there, is under 12 degrees) either the triangle's smallest angle
+// corner (a B-rep point, or a point where a junction between united
+// components meets a curve or another junction, where the face's corner, the
+// angle sum of that face's triangles there, is under 12 degrees) either the triangle's smallest angle
 // sits at the corner, or the triangle lies in the corner's wedge, every node
 // on the two curves that meet there: where the wedge is narrower than its
 // boundary segments, a triangle spanning it cannot have larger angles.
@@ -94,27 +95,58 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
     const int curve = da == 1 ? ea : eb, point = da == 0 ? ea : eb;
     return (g.curve_start_point(curve) == point || g.curve_end_point(curve) == point) && g.curve_length(curve) < h;
   };
+  // The surface's curves and corners as its faces draw them: a B-rep curve,
+  // or a junction where a union of meshes cut two components' faces (the
+  // curve a B-rep union would have made); a corner is a B-rep point or a
+  // node where three faces meet (a junction meeting a curve or another
+  // junction). A junction node is on two faces and classified on neither's
+  // B-rep.
+  std::vector<std::array<int, 3>> faces_at(m.xyz.size(), {-1, -1, -1});  // first three faces at each node
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    for (int n : m.tris[t]) {
+      auto& f = faces_at[n];
+      const int face = m.tri_face[t];
+      for (int& slot : f) {
+        if (slot == face) break;
+        if (slot < 0) {
+          slot = face;
+          break;
+        }
+      }
+    }
+  auto is_corner = [&](int n) { return m.node_dim[n] == 0 || faces_at[n][2] >= 0; };
+  auto on_curve = [&](int n) { return m.node_dim[n] <= 1 || faces_at[n][1] >= 0; };
+  // The curve a non-corner node lies on: (1, B-rep curve) or (2, its two faces).
+  auto curve_of = [&](int n) -> std::pair<int, int64_t> {
+    if (m.node_dim[n] == 1) return {1, m.node_entity[n]};
+    const auto [lo, hi] = std::minmax(faces_at[n][0], faces_at[n][1]);
+    return {2, (int64_t(lo) << 32) | uint32_t(hi)};
+  };
+  auto place_of = [&](int n) -> std::pair<int, int64_t> {
+    if (is_corner(n)) return {0, n};
+    return on_curve(n) ? curve_of(n) : std::pair<int, int64_t>{3, n};
+  };
   auto key = [&](int node, size_t t) { return (uint64_t(node) << 32) | uint32_t(m.tri_face[t]); };
-  std::unordered_map<uint64_t, double> corner;  // (B-rep point node, face) -> angle sum
+  std::unordered_map<uint64_t, double> corner;  // (corner node, face) -> angle sum
   for (size_t t = 0; t < m.tris.size(); ++t) {
     const auto& tr = m.tris[t];
-    if (m.node_dim[tr[0]] != 0 && m.node_dim[tr[1]] != 0 && m.node_dim[tr[2]] != 0) continue;
+    if (!is_corner(tr[0]) && !is_corner(tr[1]) && !is_corner(tr[2])) continue;
     const auto a = corner_angles(m, t);
     for (int k = 0; k < 3; ++k)
-      if (m.node_dim[tr[k]] == 0) corner[key(tr[k], t)] += a[k];
+      if (is_corner(tr[k])) corner[key(tr[k], t)] += a[k];
   }
-  auto sharp = [&](int node, size_t t) { return m.node_dim[node] == 0 && corner[key(node, t)] < 12; };
+  auto sharp = [&](int node, size_t t) { return is_corner(node) && corner[key(node, t)] < 12; };
   // Per face: its sharp corner nodes and the curves leaving them.
-  std::unordered_map<int, std::set<std::pair<int, int>>> wedge;  // face -> {(dim, entity or node)}
+  std::unordered_map<int, std::set<std::pair<int, int64_t>>> wedge;  // face -> {place_of}
   for (size_t t = 0; t < m.tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int node = m.tris[t][k];
       if (!sharp(node, t)) continue;
       auto& w = wedge[m.tri_face[t]];
-      w.insert({0, node});
+      w.insert(place_of(node));
       for (int j : {1, 2}) {
         const int other = m.tris[t][(k + j) % 3];
-        if (m.node_dim[other] == 1) w.insert({1, m.node_entity[other]});
+        if (!is_corner(other) && on_curve(other)) w.insert(curve_of(other));
       }
     }
   // Edges of every thin triangle, and how many triangles of its face use each:
@@ -132,6 +164,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       const auto it = uses.find(edge_key(t, k));
       if (it != uses.end()) ++it->second;
     }
+  q.sliver.assign(m.tris.size(), 0);
   for (size_t t = 0; t < m.tris.size(); ++t) {
     if (!(q.min_angle[t] < 12)) continue;
     const auto a = corner_angles(m, t);
@@ -140,17 +173,14 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
     const auto w = wedge.find(m.tri_face[t]);
     if (!forced && w != wedge.end()) {
       forced = true;
-      for (int node : m.tris[t]) {
-        const int dim = m.node_dim[node];
-        forced = forced && dim <= 1 && w->second.count({dim, dim == 0 ? node : m.node_entity[node]});
-      }
+      for (int node : m.tris[t]) forced = forced && w->second.count(place_of(node));
     }
     if (!forced) {
       const auto& tr = m.tris[t];
       const auto& ratio = per[t].edge_ratio;
       const int e = static_cast<int>(std::min_element(ratio.begin(), ratio.end()) - ratio.begin());
       const int a = tr[e], b = tr[(e + 1) % 3];
-      const bool on_boundary = m.node_dim[tr[0]] <= 1 && m.node_dim[tr[1]] <= 1 && m.node_dim[tr[2]] <= 1;
+      const bool on_boundary = on_curve(tr[0]) && on_curve(tr[1]) && on_curve(tr[2]);
       int boundary_segments = 0;
       double h = HUGE_VAL, longest = 0;
       for (int k = 0; k < 3; ++k) {
@@ -160,7 +190,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
         if (ratio[k] > 0) h = std::min(h, len / ratio[k]);
       }
       const double width = longest > 0 ? 2 * per[t].area / longest : 0;  // height over the longest edge
-      const bool along_curve = m.node_dim[a] == 1 && m.node_dim[b] == 1 && m.node_entity[a] == m.node_entity[b];
+      const bool along_curve = !is_corner(a) && !is_corner(b) && on_curve(a) && on_curve(b) && curve_of(a) == curve_of(b);
       const bool spans = (boundary_segments <= 1 && width < kNarrow * h) || (!along_curve && ratio[e] < kNarrow);
       if (on_boundary && spans) {
         forced = true;
@@ -171,6 +201,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       }
     }
     q.forced_below_12 += forced;
+    q.sliver[t] = forced ? 1 : 2;
   }
   q.avoidable_below_12 = q.below_12 - q.forced_below_12;
 }

@@ -13,7 +13,10 @@
 //   (normal against the oriented surface normal) and zero-area triangles;
 //   largest distance of a node from its face's surface; share of edges with
 //   length / h(midpoint) in [1/sqrt2, sqrt2]; total area.
-//   Triangles under 12 degrees split into forced ones and avoidable ones: at a
+//   Triangles under 12 degrees split into forced ones and avoidable ones
+//   (curves and corners are those of the united surface: a junction where a
+//   union of meshes cut two faces counts as the curve a B-rep union makes
+//   there, a node where it meets a curve as a B-rep point): at a
 //   B-rep point where the face's own corner (the angle sum of its triangles
 //   there) is under 12 degrees, a triangle whose smallest angle sits at that
 //   point, or whose nodes all lie on the two curves meeting there (spanning
@@ -30,6 +33,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "geometry/geometry.h"
@@ -41,6 +45,7 @@ namespace sizemesh {
 struct MeshQuality {
   int triangles = 0, nodes = 0;
   std::vector<double> min_angle;          // per triangle (degrees)
+  std::vector<int8_t> sliver;             // per triangle: 0 not under 12 degrees, 1 forced, 2 avoidable
   std::array<int, 10> histogram{};        // of min_angle, 6-degree bins
   int below_12 = 0, below_24 = 0;
   int forced_below_12 = 0;                // at a CAD corner under 12 degrees, across a narrow face or on a short curve

@@ -134,8 +134,8 @@ void check_mesh_format(const std::string& path) {
     throw Error("unknown mesh format '" + ext + "' for '" + path + "' (use .vtu, .msh, .stl, .cgns, .mesh or .smesh)");
 }
 
-void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels,
-                const std::vector<double>& min_angle, const std::vector<double>& target_size) {
+void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels, const MeshQuality& q,
+                const std::vector<double>& target_size) {
   const std::string ext = extension(path);
   if (ext == ".msh") return write_msh(path, m, labels);
   if (ext == ".cgns") return write_cgns(path, m, labels);
@@ -149,7 +149,8 @@ void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels&
             {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
             {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},
              {"source_face_id", source_ids},
-             {"min_angle", min_angle}});
+             {"min_angle", q.min_angle},
+             {"sliver", std::vector<double>(q.sliver.begin(), q.sliver.end())}});
 }
 
 }  // namespace sizemesh

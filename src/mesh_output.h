@@ -1,5 +1,6 @@
 // Writes the surface mesh, format by the output's extension:
-//   .vtu  VTK (ParaView): cell data face_id, source_face_id and min_angle,
+//   .vtu  VTK (ParaView): cell data face_id, source_face_id, min_angle and
+//         sliver (0 not under 12 degrees, 1 forced by the CAD, 2 avoidable),
 //         point data target_size and classification
 //   .msh  Gmsh 4.1 ASCII, one surface entity per face, in the physical group
 //         of its source face ("face_<id>": the sewn model's face it came from)
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mesher/quality.h"
 #include "mesher/surface_mesh.h"
 #include "src/mesh_labels.h"
 
@@ -21,7 +23,8 @@ namespace sizemesh {
 void check_mesh_format(const std::string& path);
 // ... or a file that cannot be written.
 // labels: each face's marker, name and boundary kind (src/mesh_labels.h).
-void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels,
-                const std::vector<double>& min_angle, const std::vector<double>& target_size);
+// q: the mesh's quality (per-triangle smallest angle and sliver kind).
+void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels, const MeshQuality& q,
+                const std::vector<double>& target_size);
 
 }  // namespace sizemesh

@@ -110,6 +110,10 @@ struct Mesh : Run {
     return column(out);
   }
   py::array_t<double> min_angle() const { return column(result->report.quality.min_angle); }
+  py::array_t<int> sliver() const {
+    const auto& s = result->report.quality.sliver;
+    return column(std::vector<int>(s.begin(), s.end()));
+  }
   py::array_t<double> target_size() const { return column(result->target); }
   py::object report() const { return to_python(report_json(result->report)); }
   std::vector<std::pair<int, std::string>> failures() const {
@@ -121,7 +125,7 @@ struct Mesh : Run {
     check_writable(path);
     check_mesh_format(path);
     py::gil_scoped_release unlocked;
-    write_mesh(path, result->mesh, result->labels(), result->report.quality.min_angle, result->target);
+    write_mesh(path, result->mesh, result->labels(), result->report.quality, result->target);
   }
   py::object to_meshio() const {
     py::module_ meshio = py::module_::import("meshio");
@@ -136,6 +140,7 @@ struct Mesh : Run {
     cell_data["face_id"] = one(face_ids());
     cell_data["marker"] = one(markers());
     cell_data["min_angle"] = one(min_angle());
+    cell_data["sliver"] = one(sliver());
     point_data["target_size"] = target_size();
     return meshio.attr("Mesh")(points(), cells, py::arg("point_data") = point_data, py::arg("cell_data") = cell_data);
   }
@@ -239,6 +244,8 @@ PYBIND11_MODULE(sizemesh, m) {
       .def_property_readonly("markers", &Mesh::markers,
                              "each triangle's marker: its source face id, or past them the far field and symmetry")
       .def_property_readonly("min_angle", &Mesh::min_angle, "smallest angle of each triangle, degrees")
+      .def_property_readonly("sliver", &Mesh::sliver,
+                             "per triangle: 0 not under 12 degrees, 1 forced by the CAD, 2 avoidable")
       .def_property_readonly("target_size", &Mesh::target_size, "the size map's size at each node")
       .def_property_readonly("report", &Mesh::report, "the JSON report of the command line, as a dict")
       .def_property_readonly("failures", &Mesh::failures, "faces that could not be meshed: (face, reason)")
