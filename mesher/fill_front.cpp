@@ -38,7 +38,7 @@ bool chain_loops(const std::vector<std::array<int, 2>>& edges, std::vector<std::
 
 class EarClipper {
  public:
-  EarClipper(const FaceMesh& fm, const FaceSurface& fs, bool strict) : fm_(fm), fs_(fs), strict_(strict) {
+  EarClipper(const FaceMesh& fm, const FaceSurface& fs, EarTest test) : fm_(fm), fs_(fs), test_(test) {
     for (const auto& t : fm.tris)
       for (int k = 0; k < 3; ++k) edges_.insert(key(t[k], t[(k + 1) % 3]));
   }
@@ -87,7 +87,10 @@ class EarClipper {
       const Vec2& p = fm_.uv[k];
       if (orient(ua, ub, p) >= 0 && orient(ub, uc, p) >= 0 && orient(uc, ua, p) >= 0) return -1;
     }
-    if (strict_ && turned(ua, ub, uc, fm_.s[a], fm_.s[b], fm_.s[c])) return -1;
+    if (test_ == EarTest::kFacing && turned(ua, ub, uc, fm_.s[a], fm_.s[b], fm_.s[c])) return -1;
+    if (test_ == EarTest::kCentroid &&
+        fs_.turned_at_centroid(ua, ub, uc, (fm_.s[b].p - fm_.s[a].p).cross(fm_.s[c].p - fm_.s[a].p)))
+      return -1;
     return triangle_quality(fm_.s[a].p, fm_.s[b].p, fm_.s[c].p);
   }
 
@@ -107,18 +110,18 @@ class EarClipper {
 
   const FaceMesh& fm_;
   const FaceSurface& fs_;
-  bool strict_;
+  EarTest test_;
   std::unordered_set<uint64_t> edges_;  // mesh edges in space (identity pairs)
 };
 
 }  // namespace
 
 bool fill_front(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges,
-                bool strict, int max_edges) {
+                EarTest test, int max_edges) {
   if (open_edges.empty() || static_cast<int>(open_edges.size()) > max_edges) return false;
   std::vector<std::vector<int>> loops;
   if (!chain_loops(open_edges, loops)) return false;
-  EarClipper clipper(fm, fs, strict);
+  EarClipper clipper(fm, fs, test);
   std::vector<std::array<int, 3>> tris;
   for (const auto& loop : loops)
     if (!clipper.clip(loop, tris)) return false;

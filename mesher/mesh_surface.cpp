@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/predicates.h"
 #include "geometry/stopwatch.h"
 #include "mesher/advancing_front.h"
 #include "mesher/discretise_curves.h"
@@ -24,6 +25,64 @@ namespace {
 // larger ones only to avoid a hole after the last.
 constexpr int kSmallLeftover = 64;
 constexpr int kLargeLeftover = 5000;
+// Strips closed across (fill_narrow): ear clipping is cubic in the edges.
+constexpr int kNarrowLeftover = 400;
+
+// A strip narrower than the elements (its whole boundary, or what a front
+// left of it) closed by ears across it that face the surface at their
+// centroids (a rounded edge's
+// strip turns its normal round, so no chord faces both sides' normals and
+// the front finds no valid triangle). Taken only when every new triangle
+// spans the strip at under tan(12 deg) of the wanted size (no mesh of the
+// strip can do better) or has no angle under 30 degrees: ears across a strip
+// a few elements wide are all about 12 degrees, and the front does better
+// there. Otherwise fm is left as it was.
+bool fill_narrow(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges) {
+  FaceMesh filled = fm;
+  if (!fill_front(filled, fs, open_edges, EarTest::kCentroid, kNarrowLeftover)) return false;
+  const double narrow = std::tan(12.0 * M_PI / 180.0);
+  for (size_t t = fm.tris.size(); t < filled.tris.size(); ++t) {
+    const auto& tr = filled.tris[t];
+    const Vec3 &a = filled.s[tr[0]].p, &b = filled.s[tr[1]].p, &c = filled.s[tr[2]].p;
+    if (min_angle_deg(a, b, c) >= 30) continue;
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double h = std::min({filled.s[tr[0]].h, filled.s[tr[1]].h, filled.s[tr[2]].h});
+    if (!(longest > 0) || !((b - a).cross(c - a).norm() / longest < narrow * h)) return false;
+  }
+  fm = std::move(filled);
+  return true;
+}
+
+// The region fm bounds is a strip narrower than the elements: its area over
+// half its perimeter (the mean width of a strip) is under tan(12 deg) of the
+// largest wanted size on its boundary. The area is the uv area of the loops
+// times the mean area element |du x dv| at their nodes: a screen that keeps
+// the ear clipping (cubic in the nodes) off faces it cannot close across.
+bool narrow_region(const FaceMesh& fm) {
+  if (fm.num_nodes() > kNarrowLeftover || fm.loops.empty()) return false;
+  double uv_area = 0, perimeter = 0, element = 0, h = 0;
+  int count = 0;
+  for (const auto& loop : fm.loops)
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const int a = loop[i], b = loop[(i + 1) % loop.size()];
+      uv_area += 0.5 * (fm.uv[a].x() * fm.uv[b].y() - fm.uv[b].x() * fm.uv[a].y());
+      perimeter += (fm.s[b].p - fm.s[a].p).norm();
+      element += fm.s[a].du.cross(fm.s[a].dv).norm();
+      h = std::max(h, fm.s[a].h);
+      ++count;
+    }
+  if (!(count > 0) || !(perimeter > 0) || !(uv_area > 0)) return false;
+  const double area = uv_area * element / count;
+  return 2 * area / perimeter < std::tan(12.0 * M_PI / 180.0) * h;
+}
+
+// Every edge of fm's boundary loops, as a front to close.
+std::vector<std::array<int, 2>> boundary_front(const FaceMesh& fm) {
+  std::vector<std::array<int, 2>> out;
+  for (const auto& loop : fm.loops)
+    for (size_t i = 0; i < loop.size(); ++i) out.push_back({loop[i], loop[(i + 1) % loop.size()]});
+  return out;
+}
 
 struct FaceResult {
   FaceMesh mesh;
@@ -62,10 +121,21 @@ void mesh_inside(const FaceMesh& raw, FaceSurface& fs, const MeshOptions& o, Fac
   attempts.push_back({&steady, true});
   FrontResult fr;
   auto fill = [&](bool lenient, int max_edges) {
-    return fill_front(r.mesh, fs, fr.open_edges, true, max_edges) ||
-           (lenient && fill_front(r.mesh, fs, fr.open_edges, false, max_edges));
+    return fill_front(r.mesh, fs, fr.open_edges, EarTest::kFacing, max_edges) ||
+           (lenient && fill_front(r.mesh, fs, fr.open_edges, EarTest::kAny, max_edges));
   };
+  // A strip too narrow for any point inside it (a rounded edge far below
+  // the elements): closed across first; a front would fill it with points
+  // of its own and every triangle at them a sliver.
+  if (narrow_region(steady)) {
+    r.mesh = steady;
+    if (fill_narrow(r.mesh, fs, boundary_front(steady))) {
+      fr.ok = true;
+      r.filled = true;
+    }
+  }
   for (const Attempt& a : attempts) {
+    if (fr.ok) break;
     for (int strategy = a.lenient ? 2 : 0; strategy < kStrategyCount && !fr.ok; ++strategy) {
       r.mesh = *a.boundary;
       fr = advancing_front(r.mesh, fs, strategy, budget, a.lenient);
@@ -74,6 +144,12 @@ void mesh_inside(const FaceMesh& raw, FaceSurface& fs, const MeshOptions& o, Fac
       r.strategy = strategy;
       // A few edges the front could not advance from: close them in place.
       if (!fr.ok && fill(a.lenient, kSmallLeftover)) {
+        fr.ok = true;
+        r.filled = true;
+      }
+      // Before the strategies that add points freely: a strip too narrow
+      // for any point inside it is closed across.
+      if (!fr.ok && !a.lenient && strategy == 1 && fill_narrow(r.mesh, fs, fr.open_edges)) {
         fr.ok = true;
         r.filled = true;
       }

@@ -119,16 +119,16 @@ TEST_CASE("ear clipping closes a front's leftover loop exactly, and refuses a ho
   const auto& l = fm.loops[0];
   for (size_t i = 0; i < l.size(); ++i) loop.push_back({l[i], l[(i + 1) % l.size()]});
   // Too many edges for the limit: nothing is added.
-  CHECK_FALSE(fill_front(fm, fs, loop, true, static_cast<int>(loop.size()) - 1));
+  CHECK_FALSE(fill_front(fm, fs, loop, EarTest::kFacing, static_cast<int>(loop.size()) - 1));
   CHECK(fm.tris.empty());
-  REQUIRE(fill_front(fm, fs, loop, true, static_cast<int>(loop.size())));
+  REQUIRE(fill_front(fm, fs, loop, EarTest::kFacing, static_cast<int>(loop.size())));
   CHECK(fm.tris.size() == loop.size() - 2);
   CHECK(triangles_area(fm) == Approx(loops_area(fm)).epsilon(1e-12));
   // The same loop reversed bounds a hole, not a region: refused.
   FaceMesh other = face_boundary(model, cm, fs);
   std::vector<std::array<int, 2>> reversed;
   for (const auto& e : loop) reversed.push_back({e[1], e[0]});
-  CHECK_FALSE(fill_front(other, fs, reversed, false, 1000));
+  CHECK_FALSE(fill_front(other, fs, reversed, EarTest::kAny, 1000));
   CHECK(other.tris.empty());
 }
 

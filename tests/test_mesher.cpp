@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <functional>
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "geometry/background_mesh.h"
@@ -339,6 +340,46 @@ TEST_CASE("a sharp corner gets one thin triangle: long first segments where its 
   CHECK(q.below_12 == 2);  // one apex triangle per cap, with the CAD's 4 degrees
   CHECK(q.forced_below_12 == 2);
   CHECK(q.worst_angle == Approx(alpha * 180 / 3.14159265358979323846).epsilon(0.02));
+}
+
+TEST_CASE("a rounded edge narrower than the elements is closed across, with no point inside it", "[mesher]") {
+  // A slab whose two ends are half cylinders of radius r: each end is a strip
+  // 2r wide whose normal turns half round, ten times narrower than h tan(12
+  // deg). No chord across it faces both sides' normals; the front alone
+  // would fill it with points of its own.
+  const double r = 0.005, len = 4, height = 2, h = 0.5;
+  auto arc = [](gp_Pnt a, gp_Pnt m, gp_Pnt b) { return BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, m, b).Value()).Edge(); };
+  BRepBuilderAPI_MakeWire wire;
+  wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(0, -r, 0), gp_Pnt(len, -r, 0)).Edge());
+  wire.Add(arc(gp_Pnt(len, -r, 0), gp_Pnt(len + r, 0, 0), gp_Pnt(len, r, 0)));
+  wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(len, r, 0), gp_Pnt(0, r, 0)).Edge());
+  wire.Add(arc(gp_Pnt(0, r, 0), gp_Pnt(-r, 0, 0), gp_Pnt(0, -r, 0)));
+  const TopoDS_Shape slab =
+      BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(wire.Wire()).Face(), gp_Vec(0, 0, height)).Shape();
+  const Model model = model_from_shape(slab);
+  const UniformSize size(h);
+  const SurfaceMesh m = mesh_surface(model, size);
+  const MeshQuality q = mesh_quality(m, model, size);
+  require_valid_closed(model, m, q, len);
+  CHECK(q.inverted == 0);
+  int strips = 0;
+  for (int f = 1; f <= model.num_faces(); ++f) {
+    if (std::abs(model.face_area(f) - M_PI * r * height) > 1e-6) continue;
+    ++strips;
+    int triangles = 0, inner = 0;
+    std::set<int> nodes;
+    for (size_t t = 0; t < m.tris.size(); ++t) {
+      if (m.tri_face[t] != f) continue;
+      ++triangles;
+      for (int n : m.tris[t]) inner += m.node_dim[n] == 2, nodes.insert(n);
+    }
+    // A disc triangulated from its boundary nodes alone.
+    CHECK(inner == 0);
+    CHECK(triangles == static_cast<int>(nodes.size()) - 2);
+  }
+  CHECK(strips == 2);
+  CHECK(q.below_12 > 0);
+  CHECK(q.avoidable_below_12 == 0);
 }
 
 TEST_CASE("with a deviation bound, a sharp corner's first segment is no longer than the chord of that height on the faces beside it", "[mesher]") {
