@@ -191,11 +191,17 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       }
       const double width = longest > 0 ? 2 * per[t].area / longest : 0;  // height over the longest edge
       const bool along_curve = !is_corner(a) && !is_corner(b) && on_curve(a) && on_curve(b) && curve_of(a) == curve_of(b);
+      // A junction from corner to corner in this one segment: a curve of the
+      // united surface shorter than the elements (where a cut passes near a
+      // B-rep point, between the curves that meet there).
+      const bool short_junction = is_corner(a) && is_corner(b) && (m.node_dim[a] == 2 || m.node_dim[b] == 2) &&
+                                  uses[edge_key(t, e)] < 2;
       const bool spans = (boundary_segments <= 1 && width < kNarrow * h) || (!along_curve && ratio[e] < kNarrow);
       if (on_boundary && spans) {
         forced = true;
         ++q.narrow_below_12;
-      } else if (ratio[e] < kNarrow && short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e])) {
+      } else if (ratio[e] < kNarrow && (short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e]) ||
+                                        short_junction)) {
         forced = true;
         ++q.short_curve_below_12;
       }

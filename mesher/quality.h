@@ -27,7 +27,8 @@
 //   elements), and one whose
 //   shortest edge, under h tan(12 deg), is a segment of a B-rep curve itself
 //   shorter than h (a CAD curve shorter than the elements, e.g. one split
-//   only because it turns sharply).
+//   only because it turns sharply), or a junction's whole piece between two
+//   corners (a cut passing a B-rep point close by).
 //   Self-intersecting triangle pairs (mesher/self_intersection.h), and of those
 //   the local ones: within one face or between faces that share a curve.
 #pragma once
