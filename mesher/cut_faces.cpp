@@ -561,37 +561,71 @@ bool nearest_on_curve(const Geometry& g, int c, const Vec3& x, double& t) {
   return std::isfinite(t);
 }
 
-// A CAD curve node next to a junction corner on the same curve, closer to
-// it than a third of its other segment, moved along the curve to midway
-// between its other neighbour and the corner: the cut split a segment near
-// one end, and the stub left would be the short side of a sliver in both
-// faces. Only nodes whose faces are all the corner's (faces the junction
-// cuts, meshed again) move; their triangles' uv follow. True when one moved.
-bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction) {
-  bool moved = false;
+// The CAD curve segments that end at a junction corner (where the cut
+// crossed a curve), spaced again before the faces are meshed again; only
+// segments whose faces are all the corner's (faces the junction cuts) change.
+//  - A node closer to the corner than a third of its other segment moves
+//    along the curve to midway between its other neighbour and the corner:
+//    the cut split a segment near one end, and the stub would be the short
+//    side of a sliver in both faces.
+//  - A segment longer than 1.5 times the size wanted at its middle is split
+//    on the curve to the sizes wanted along it: the curve keeps the spacing
+//    of a component's own, coarser size map, while the junction and the
+//    region beside it take the finer side's, growing away from it. Not
+//    where the junction leaves the corner within 15 degrees of the curve.
+// Triangles at a moved node keep their corners' uv in step; the two beside a
+// split segment become fans. True when anything changed.
+bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
+                       const std::vector<double>& size_slope, const std::vector<std::array<int, 2>>& junction) {
+  bool changed = false;
   std::vector<char> on_junction(s.xyz.size(), 0);
-  for (const auto& [a, b] : junction) on_junction[a] = on_junction[b] = 1;
+  std::unordered_map<int, std::vector<int>> junction_next;
+  for (const auto& [a, b] : junction) {
+    on_junction[a] = on_junction[b] = 1;
+    junction_next[a].push_back(b);
+    junction_next[b].push_back(a);
+  }
   std::vector<std::vector<int>> node_faces(s.xyz.size()), node_tris(s.xyz.size());
-  std::unordered_map<uint64_t, std::vector<int>> edge_faces;
+  std::unordered_map<uint64_t, std::vector<int>> edge_tris;
   for (size_t t = 0; t < s.tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = s.tris[t][k], f = s.tri_face[t];
       node_tris[a].push_back(static_cast<int>(t));
       if (std::find(node_faces[a].begin(), node_faces[a].end(), f) == node_faces[a].end()) node_faces[a].push_back(f);
-      edge_faces[edge_key(a, s.tris[t][(k + 1) % 3])].push_back(f);
+      edge_tris[edge_key(a, s.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
     }
+  auto corner_of = [&](int t, int n) {
+    return static_cast<int>(std::find(s.tris[t].begin(), s.tris[t].end(), n) - s.tris[t].begin());
+  };
   // Neighbours of a along edges between two faces (the face boundaries through a).
   auto boundary_neighbours = [&](int a) {
     std::vector<int> out;
     for (int t : node_tris[a])
-      for (int k = 0; k < 3; ++k) {
-        const int b = s.tris[t][k];
+      for (int b : s.tris[t]) {
         if (b == a || std::find(out.begin(), out.end(), b) != out.end()) continue;
-        const auto& f = edge_faces[edge_key(a, b)];
-        if (f.size() == 2 && f[0] != f[1]) out.push_back(b);
+        const auto& tris = edge_tris[edge_key(a, b)];
+        if (tris.size() == 2 && s.tri_face[tris[0]] != s.tri_face[tris[1]]) out.push_back(b);
       }
     return out;
   };
+  // The point of curve c nearest x, with its uv on each face of the
+  // triangles `tris` (projected from `start`, that face's uv near it).
+  auto on_curve = [&](int curve, const Vec3& x, Vec3& p) {
+    double t = 0;
+    try {
+      if (!nearest_on_curve(g, curve, x, t)) return false;
+      p = g.eval_curve(curve, t);
+    } catch (const EvaluationError&) {
+      return false;
+    }
+    return std::isfinite(p.x());
+  };
+  struct Split {
+    int c, a, curve;
+    std::vector<Vec3> x;  // new nodes from c to a
+  };
+  std::vector<Split> splits;
+  std::set<int> split_tris;
   for (size_t c = 0; c < s.xyz.size(); ++c) {
     if (!on_junction[c] || s.node_dim[c] != 2 || node_faces[c].size() < 3) continue;
     for (int a : boundary_neighbours(static_cast<int>(c))) {
@@ -601,39 +635,151 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const std::vector<std:
         inside = inside && std::find(node_faces[c].begin(), node_faces[c].end(), f) != node_faces[c].end();
       const std::vector<int> along = boundary_neighbours(a);
       if (!inside || along.size() != 2) continue;
-      const int p = along[0] == static_cast<int>(c) ? along[1] : along[0];
+      const int p = along[0] == static_cast<int>(c) ? along[1] : along[0], curve = s.node_entity[a];
       const double stub = (s.xyz[a] - s.xyz[c]).norm(), other = (s.xyz[p] - s.xyz[a]).norm();
-      if (!(stub < other / 3)) continue;
-      const Vec3 target = 0.5 * (s.xyz[p] + s.xyz[c]);
-      double t = 0;
-      Vec3 x;
-      try {
-        if (!nearest_on_curve(g, s.node_entity[a], target, t)) continue;
-        x = g.eval_curve(s.node_entity[a], t);
-      } catch (const EvaluationError&) {
+      const auto& beside = edge_tris[edge_key(static_cast<int>(c), a)];
+      if (stub < other / 3) {
+        Vec3 x;
+        const Vec3 target = 0.5 * (s.xyz[p] + s.xyz[c]);
+        if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * other)) continue;
+        std::map<int, Vec2> uv;  // per face of a
+        bool projected = true;
+        for (int t : node_tris[a]) {
+          const int f = s.tri_face[t];
+          if (uv.count(f)) continue;
+          Vec2 w = s.tri_uv[t][corner_of(t, a)];
+          projected = projected && g.project_to_face(f, x, w);
+          uv[f] = w;
+        }
+        if (!projected) continue;
+        s.xyz[a] = x;
+        for (int t : node_tris[a]) {
+          const int k = corner_of(t, a);
+          s.tri_uv[t][k] = unwrap(g, s.tri_face[t], uv[s.tri_face[t]], s.tri_uv[t][k]);
+        }
+        changed = true;
         continue;
       }
-      if (!((x - target).norm() < 0.25 * other)) continue;
-      std::map<int, Vec2> uv;  // per face of a, projected from its uv in a triangle there
-      bool projected = true;
-      for (int t2 : node_tris[a]) {
-        const int f = s.tri_face[t2];
-        if (uv.count(f)) continue;
-        const int k = static_cast<int>(std::find(s.tris[t2].begin(), s.tris[t2].end(), a) - s.tris[t2].begin());
-        Vec2 w = s.tri_uv[t2][k];
-        projected = projected && g.project_to_face(f, x, w);
-        uv[f] = w;
+      // Sizes along the segment: at the corner the finest of its faces (the
+      // junction is meshed to the finer component), at a the finer of its
+      // two, between them linear but grown from the corner's at no more than
+      // the gradient bound (Eq. 12); the segment split by the integral of 1/h
+      // (Eq. 1a-1b, as a CAD curve).
+      double hc = HUGE_VAL, ha = HUGE_VAL, slope = 0;  // slope 0: no bound known
+      for (int t : node_tris[c]) {
+        int hint = -1;
+        hc = std::min(hc, h.at(s.tri_face[t], s.tri_uv[t][corner_of(t, static_cast<int>(c))], hint));
       }
-      if (!projected) continue;
-      s.xyz[a] = x;
-      for (int t2 : node_tris[a]) {
-        const int k = static_cast<int>(std::find(s.tris[t2].begin(), s.tris[t2].end(), a) - s.tris[t2].begin());
-        s.tri_uv[t2][k] = unwrap(g, s.tri_face[t2], uv[s.tri_face[t2]], s.tri_uv[t2][k]);
+      for (int t : beside) {
+        int hint = -1;
+        ha = std::min(ha, h.at(s.tri_face[t], s.tri_uv[t][corner_of(t, a)], hint));
+        const int f = s.tri_face[t];
+        if (f < static_cast<int>(size_slope.size()) && size_slope[f] > 0)
+          slope = slope > 0 ? std::min(slope, size_slope[f]) : size_slope[f];
       }
-      moved = true;
+      if (!(hc > 0) || !(ha > 0) || !std::isfinite(hc) || !std::isfinite(ha)) continue;
+      constexpr int kSteps = 64;
+      std::vector<double> integral(kSteps + 1, 0.0);
+      auto size_at = [&](double d) {
+        const double linear = hc + (ha - hc) * d / stub;
+        return slope > 0 ? std::min(linear, hc + slope * d) : linear;
+      };
+      for (int i = 1; i <= kSteps; ++i) {
+        const double d0 = stub * (i - 1) / kSteps, d1 = stub * i / kSteps;
+        integral[i] = integral[i - 1] + (d1 - d0) * 0.5 * (1 / size_at(d0) + 1 / size_at(d1));
+      }
+      const int pieces = std::min(32, static_cast<int>(std::lround(integral.back())));
+      if (pieces < 2 || !(stub > 1.5 * size_at(0.5 * stub))) continue;
+      // Not in a narrow wedge between the curve and the junction: its
+      // triangles span it from side to side, and finer nodes on one side
+      // only make them thinner.
+      bool wedge = false;
+      const Vec3 along_curve = (s.xyz[a] - s.xyz[c]).normalized();
+      for (int j : junction_next[static_cast<int>(c)])
+        wedge = wedge || along_curve.dot((s.xyz[j] - s.xyz[c]).normalized()) > std::cos(15.0 * M_PI / 180.0);
+      if (wedge) continue;
+      if (beside.size() != 2 || split_tris.count(beside[0]) || split_tris.count(beside[1])) continue;
+      Split sp{static_cast<int>(c), a, curve, {}};
+      int step = 0;
+      for (int i = 1; i < pieces; ++i) {
+        const double at = integral.back() * i / pieces;
+        while (step + 1 < kSteps && integral[step + 1] < at) ++step;
+        const double span = integral[step + 1] - integral[step];
+        const double d = stub * (step + (span > 0 ? (at - integral[step]) / span : 0.0)) / kSteps;
+        Vec3 x;
+        const Vec3 target = s.xyz[c] + (s.xyz[a] - s.xyz[c]) * (d / stub);
+        if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * stub)) break;
+        sp.x.push_back(x);
+      }
+      if (static_cast<int>(sp.x.size()) != pieces - 1) continue;
+      split_tris.insert(beside.begin(), beside.end());
+      splits.push_back(std::move(sp));
     }
   }
-  return moved;
+  // Each split: the new nodes, and the two triangles beside the segment
+  // replaced by fans to their third corner.
+  std::vector<char> dropped(s.tris.size(), 0);
+  const size_t old_tris = s.tris.size();
+  for (const Split& sp : splits) {
+    const auto beside = edge_tris[edge_key(sp.c, sp.a)];
+    // uv along the segment in each face beside it, by projection from the straight line.
+    std::vector<std::vector<Vec2>> w(beside.size());
+    bool projected = true;
+    for (size_t j = 0; j < beside.size() && projected; ++j) {
+      const int t = beside[j], f = s.tri_face[t];
+      const Vec2 uc = s.tri_uv[t][corner_of(t, sp.c)], ua = s.tri_uv[t][corner_of(t, sp.a)];
+      w[j].push_back(uc);
+      for (size_t i = 0; i < sp.x.size() && projected; ++i) {
+        const double at = double(i + 1) / (sp.x.size() + 1);
+        const Vec2 line = (1 - at) * uc + at * ua;
+        Vec2 guess = line;
+        projected = g.project_to_face(f, sp.x[i], guess);
+        w[j].push_back(unwrap(g, f, guess, line));
+      }
+      w[j].push_back(ua);
+    }
+    if (!projected) continue;
+    std::vector<int> ids{sp.c};
+    for (const Vec3& x : sp.x) {
+      ids.push_back(static_cast<int>(s.xyz.size()));
+      s.xyz.push_back(x);
+      s.node_dim.push_back(1);
+      s.node_entity.push_back(sp.curve);
+    }
+    ids.push_back(sp.a);
+    for (size_t j = 0; j < beside.size(); ++j) {
+      const int t = beside[j], f = s.tri_face[t];
+      const auto tr = s.tris[t];
+      const auto uv = s.tri_uv[t];
+      const int kc = corner_of(t, sp.c), ka = corner_of(t, sp.a), ko = 3 - kc - ka;
+      const bool forward = (kc + 1) % 3 == ka;  // the triangle runs c -> a
+      dropped[t] = 1;
+      for (size_t i = 0; i + 1 < ids.size(); ++i) {
+        if (forward) {
+          s.tris.push_back({ids[i], ids[i + 1], tr[ko]});
+          s.tri_uv.push_back({w[j][i], w[j][i + 1], uv[ko]});
+        } else {
+          s.tris.push_back({ids[i + 1], ids[i], tr[ko]});
+          s.tri_uv.push_back({w[j][i + 1], w[j][i], uv[ko]});
+        }
+        s.tri_face.push_back(f);
+      }
+    }
+    changed = true;
+  }
+  if (splits.empty()) return changed;
+  size_t out = 0;
+  for (size_t t = 0; t < s.tris.size(); ++t) {
+    if (t < old_tris && dropped[t]) continue;
+    s.tris[out] = s.tris[t];
+    s.tri_face[out] = s.tri_face[t];
+    s.tri_uv[out] = s.tri_uv[t];
+    ++out;
+  }
+  s.tris.resize(out);
+  s.tri_face.resize(out);
+  s.tri_uv.resize(out);
+  return changed;
 }
 
 // The junction's nodes, and each one's largest distance from the surfaces
@@ -663,7 +809,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
   for (const Vec3& x : s.xyz) box.extend(x);
   const double tol = 1e-13 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
   bool merged = merge_coincident(s, junction, 1e3 * tol);
-  merged = space_curve_nodes(s, g, junction) || merged;
+  merged = space_curve_nodes(s, g, h, o.size_slope, junction) || merged;
   const Topology topo(s, g, junction);
   std::vector<Chain> chains = junction_chains(s, topo);
   std::vector<Vec3> xyz = s.xyz;

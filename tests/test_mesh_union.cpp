@@ -17,6 +17,7 @@
 #include <TopoDS_Solid.hxx>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -237,6 +238,53 @@ TEST_CASE("a thin tube through a coarse box: the box is meshed from the junction
   INFO(top << " triangles on the top, worst ratio " << worst);
   CHECK(top > 0);
   CHECK(over == 0);
+}
+
+TEST_CASE("a thin tube through a coarse box's edge: the edge's segments at the junction take the junction's size") {
+  // The tube crosses the box's vertical edge x = y = 10 at z = 5 -+ r: the
+  // cut splits two of the edge's coarse segments there. The edge is spaced
+  // again from the junction's size, growing away from it, and no segment
+  // beside a junction corner is left long (a fan of slivers to the junction)
+  // or a stub.
+  const test::TempDir dir("mesh_union_edge");
+  const double radius = 0.1, s = std::sqrt(0.5);
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(10.0, 10.0, 10.0).Shape();
+  const TopoDS_Shape tube =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(10 - s, 10 + s, 5), gp_Dir(1, -1, 0)), radius, 2.0).Shape();
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({box, tube}, dir / "edge.brep"), load);
+  CHECK(r->model->info().preparation.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  require_closed(r->mesh);
+  CHECK(cgal_pairs(r->mesh) == 0);
+  CHECK(r->report.quality.inverted == 0);
+  CHECK(r->report.quality.avoidable_below_12 == 0);
+  const MeshUnionResult& u = r->report.mesh_union;
+  REQUIRE(!u.junction.empty());
+  double hj = 0;
+  for (const auto& [a, b] : u.junction) hj = std::max(hj, (r->mesh.xyz[a] - r->mesh.xyz[b]).norm());
+  // The edge's nodes outside the tube, by height: the two corners are the
+  // last below z = 5 and the first above it, the junction between them.
+  std::vector<double> z;
+  for (size_t n = 0; n < r->mesh.xyz.size(); ++n) {
+    const Vec3& x = r->mesh.xyz[n];
+    if (std::abs(x.x() - 10) < 1e-9 && std::abs(x.y() - 10) < 1e-9) z.push_back(x.z());
+  }
+  std::sort(z.begin(), z.end());
+  const auto above = std::upper_bound(z.begin(), z.end(), 5.0);
+  REQUIRE(above != z.begin());
+  REQUIRE(above + 1 < z.end());
+  const double low = *(above - 1), high = *above;
+  CHECK(low == Approx(5 - radius).margin(0.01 * radius));
+  CHECK(high == Approx(5 + radius).margin(0.01 * radius));
+  REQUIRE(above - 2 >= z.begin());
+  const double below_segment = low - *(above - 2), above_segment = *(above + 1) - high;
+  INFO("junction edges up to " << hj << ", edge segments beside the corners " << below_segment << ", " << above_segment);
+  for (double seg : {below_segment, above_segment}) {
+    CHECK(seg < 2 * hj);
+    CHECK(seg > 0.25 * hj);
+  }
 }
 
 TEST_CASE("a box through a sphere united at mesh level: the sphere, poles and seam, meshed again from the junction") {

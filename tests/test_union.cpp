@@ -213,9 +213,10 @@ TEST_CASE("a transport's twelve components: a B-rep union on course to miss its 
   // The band remesh splits the CAD curves on its rim to the junction's size;
   // the faces beyond them (the lower fuselage under the wing root) are meshed
   // again too, or each split edge leaves a fan of 6-degree slivers there
-  // (152 on that face alone, 217 avoidable in all). What remains lies on
-  // faces the junction crosses: under 1 in 1,500 triangles.
-  CHECK(j["mesh"]["avoidable_below_12deg"].get<int>() * 1500 < j["mesh"]["triangles"].get<int>());
+  // (152 on that face alone, 217 avoidable in all). A curve node the cut
+  // leaves a stub away from a junction corner is moved along its curve (9
+  // more). What remains lies on faces the junction crosses: 2.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
 }
 
 TEST_CASE("a component whose skin folds through itself inside another is united at mesh level", "[models]") {
@@ -263,7 +264,9 @@ TEST_CASE("the 777 one-piece's tail, cut by the fuselage across the seam its ski
       test::model_path("b777_onepiece_openvsp.stp") + " -q -o " + (dir / "b.vtu"), (dir / "r.json"), 0);
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 8);
+  // A curve's segment at a junction corner keeps its component's coarse
+  // spacing unless spaced again to the junction's size (5 avoidable).
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 4);
 }
 
 TEST_CASE("a union of meshes that would lose volume is refused, and a piece wholly inside the rest is absorbed", "[models]") {
@@ -295,12 +298,13 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // them along all its junctions (the fuselage's two faces: hundreds of
   // triangles under 12 degrees). The band's triangles around the crossings
   // are held and the rest of every cut face is meshed again: no face keeps
-  // all its triangles, none is turned over, and under 200 of the 150,000
-  // triangles are avoidably under 12 degrees.
+  // all its triangles and none is turned over. The canopy's floor lies
+  // 0.002-0.007 above the fuselage's: its slot holds most of the 66 of the
+  // 159,000 triangles avoidably under 12 degrees.
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"].get<int>() < 200);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 75);
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
@@ -396,7 +400,9 @@ TEST_CASE("Pegasus's wing and tail halves, each closed by its own root cap on th
   CHECK(prep["small_loops_dropped"] == 1);
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 170);  // 318 with the halves apart
+  // 318 with the halves apart, 122 with the ventral fin's leading-edge
+  // strip (0.0015 wide) filled by the front with points of its own.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 8);
 }
 
 TEST_CASE("an open sheet inside a body is left out: the box alone, closed, exit 0") {
@@ -493,7 +499,7 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   // too: the front placed the tip's fan from a zero metric, and triangles
   // there turned over (test_mesher, the quadratic cone).
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 21);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 12);
   // Junction nodes no projection reaches are counted apart: the largest gap
   // is that of the nodes on their surfaces, a number.
   const auto& u = j["mesh_union"];
