@@ -276,6 +276,9 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
     q.area += per[t].area;
     q.zero_area += per[t].zero_area;
     q.inverted += per[t].inverted;
+    if (per[t].inverted && q.inverted_faces.size() < 20 &&
+        std::find(q.inverted_faces.begin(), q.inverted_faces.end(), m.tri_face[t]) == q.inverted_faces.end())
+      q.inverted_faces.push_back(m.tri_face[t]);
     q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }

@@ -57,6 +57,7 @@ struct MeshQuality {
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;
   std::vector<int> open_faces;            // faces at boundary or non-manifold edges (first 20, ascending)
   int inverted = 0, zero_area = 0;
+  std::vector<int> inverted_faces;        // faces holding inverted triangles (first 20 met)
   long long self_intersections = 0;       // pairs of triangles meeting beyond shared nodes
   long long local_self_intersections = 0; // of those, in one face or faces sharing a curve
   std::vector<std::array<int, 2>> intersecting_faces;  // face pairs with local intersections (first 20)

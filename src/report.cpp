@@ -113,6 +113,7 @@ nlohmann::json report_json(const RunReport& r) {
                  {"boundary_edges", q.boundary_edges},
                  {"nonmanifold_edges", q.nonmanifold_edges},
                  {"open_faces", q.open_faces},
+                 {"inverted_faces", q.inverted_faces},
                  {"orientation_conflicts", q.orientation_conflicts},
                  {"inverted_triangles", q.inverted},
                  {"zero_area_triangles", q.zero_area},
