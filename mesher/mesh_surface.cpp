@@ -30,13 +30,12 @@ constexpr int kNarrowLeftover = 400;
 
 // A strip narrower than the elements (its whole boundary, or what a front
 // left of it) closed by ears across it that face the surface at their
-// centroids (a rounded edge's
-// strip turns its normal round, so no chord faces both sides' normals and
-// the front finds no valid triangle). Taken only when every new triangle
-// spans the strip at under tan(12 deg) of the wanted size (no mesh of the
-// strip can do better) or has no angle under 30 degrees: ears across a strip
-// a few elements wide are all about 12 degrees, and the front does better
-// there. Otherwise fm is left as it was.
+// centroids: a rounded edge's strip turns its normal round, so no chord
+// faces both sides' normals and the front finds no valid triangle. Taken
+// only when every new triangle spans the strip at under tan(12 deg) of the
+// wanted size (no mesh of the strip can do better) or has no angle under 30
+// degrees: ears across a strip a few elements wide are all about 12 degrees,
+// and the front does better there. Otherwise fm is left as it was.
 bool fill_narrow(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges) {
   FaceMesh filled = fm;
   if (!fill_front(filled, fs, open_edges, EarTest::kCentroid, kNarrowLeftover)) return false;

@@ -55,8 +55,8 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 // Triangles under 12 degrees that no mesh of this CAD can avoid: at a sharp
 // corner (a B-rep point, or a point where a junction between united
 // components meets a curve or another junction, where the face's corner, the
-// angle sum of that face's triangles there, is under 12 degrees) either the triangle's smallest angle
-// sits at the corner, or the triangle lies in the corner's wedge, every node
+// angle sum of that face's triangles there, is under 12 degrees) either the
+// triangle's smallest angle sits at the corner, or the triangle lies in the corner's wedge, every node
 // on the two curves that meet there: where the wedge is narrower than its
 // boundary segments, a triangle spanning it cannot have larger angles.
 //
@@ -190,7 +190,8 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
         if (ratio[k] > 0) h = std::min(h, len / ratio[k]);
       }
       const double width = longest > 0 ? 2 * per[t].area / longest : 0;  // height over the longest edge
-      const bool along_curve = !is_corner(a) && !is_corner(b) && on_curve(a) && on_curve(b) && curve_of(a) == curve_of(b);
+      const bool along_curve =
+          !is_corner(a) && !is_corner(b) && on_curve(a) && on_curve(b) && curve_of(a) == curve_of(b);
       // A junction from corner to corner in this one segment: a curve of the
       // united surface shorter than the elements (where a cut passes near a
       // B-rep point, between the curves that meet there).

@@ -348,7 +348,9 @@ TEST_CASE("a rounded edge narrower than the elements is closed across, with no p
   // deg). No chord across it faces both sides' normals; the front alone
   // would fill it with points of its own.
   const double r = 0.005, len = 4, height = 2, h = 0.5;
-  auto arc = [](gp_Pnt a, gp_Pnt m, gp_Pnt b) { return BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, m, b).Value()).Edge(); };
+  auto arc = [](gp_Pnt a, gp_Pnt m, gp_Pnt b) {
+    return BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, m, b).Value()).Edge();
+  };
   BRepBuilderAPI_MakeWire wire;
   wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(0, -r, 0), gp_Pnt(len, -r, 0)).Edge());
   wire.Add(arc(gp_Pnt(len, -r, 0), gp_Pnt(len + r, 0, 0), gp_Pnt(len, r, 0)));
