@@ -837,9 +837,16 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     if (cut.count(s.tri_face[t])) tris_of[s.tri_face[t]].push_back(static_cast<int>(t));
 
   const size_t open_before = open_edges(s);
-  // The union counted the pairs of the mesh it made; a merge may change that.
-  const long long crossing_before =
-      !merged && u.crossing_pairs >= 0 ? u.crossing_pairs : find_self_intersections(s, 0).pairs;
+  // More crossing pairs than s had before its faces were meshed again. The
+  // union counted the pairs of the mesh it made; a merge or a spaced curve
+  // may change that, so s is counted again (once) when a round's result has
+  // more than the union's count.
+  long long crossing_before = !merged && u.crossing_pairs >= 0 ? u.crossing_pairs : -1;
+  auto more_crossings = [&](long long pairs) {
+    if (crossing_before < 0 && u.crossing_pairs >= 0 && pairs <= u.crossing_pairs) return false;
+    if (crossing_before < 0) crossing_before = find_self_intersections(s, 0).pairs;
+    return pairs > crossing_before;
+  };
   std::set<int> kept;        // faces left with their triangles
   std::set<size_t> frozen;   // chains that keep their nodes
   std::set<int> held;        // triangles of faces meshed again that stay, with their nodes
@@ -1012,7 +1019,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     // New triangles that cross others or turn against their surface.
     std::vector<int> wrong;
     const SelfIntersections hits = find_self_intersections(m, size_t(1) << 16);
-    if (hits.pairs > crossing_before)
+    if (more_crossings(hits.pairs))
       for (const auto& [a, b] : hits.kept)
         for (int t : {a, b})
           if (fresh_sorted[t]) wrong.push_back(t);
@@ -1064,7 +1071,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     // Nothing more to hold or keep: new triangles turned over alone are
     // taken as they are (the old ones were no better), crossings never.
     if (blamed) continue;
-    if (hits.pairs > crossing_before) return out;
+    if (more_crossings(hits.pairs)) return out;
     // The junction as it ends: each chain's new nodes or its old ones.
     std::vector<std::array<int, 2>> ends;
     for (size_t k = 0; k < chains.size(); ++k) {
