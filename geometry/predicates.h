@@ -36,6 +36,12 @@ inline std::array<double, 3> corner_angles_deg(const Vec3& a, const Vec3& b, con
   return angle;
 }
 
+// A sliver: a triangle whose smallest angle is under kSliverDeg degrees (the
+// quality bar the report counts by). A triangle across a strip narrower than
+// kSliverTan (tan of that angle) times its edge length is one, whatever its shape.
+constexpr double kSliverDeg = 12.0;
+constexpr double kSliverTan = 0.21255656167002213;
+
 // Smallest interior angle of a space triangle (degrees; 0 with a zero-length edge).
 inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   if (!((b - a).norm() > 0 && (c - b).norm() > 0 && (a - c).norm() > 0)) return 0;

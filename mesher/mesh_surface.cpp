@@ -39,14 +39,13 @@ constexpr int kNarrowLeftover = 400;
 bool fill_narrow(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges) {
   FaceMesh filled = fm;
   if (!fill_front(filled, fs, open_edges, EarTest::kCentroid, kNarrowLeftover)) return false;
-  const double narrow = std::tan(12.0 * M_PI / 180.0);
   for (size_t t = fm.tris.size(); t < filled.tris.size(); ++t) {
     const auto& tr = filled.tris[t];
     const Vec3 &a = filled.s[tr[0]].p, &b = filled.s[tr[1]].p, &c = filled.s[tr[2]].p;
     if (min_angle_deg(a, b, c) >= 30) continue;
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const double h = std::min({filled.s[tr[0]].h, filled.s[tr[1]].h, filled.s[tr[2]].h});
-    if (!(longest > 0) || !((b - a).cross(c - a).norm() / longest < narrow * h)) return false;
+    if (!(longest > 0) || !((b - a).cross(c - a).norm() / longest < kSliverTan * h)) return false;
   }
   fm = std::move(filled);
   return true;
@@ -72,7 +71,7 @@ bool narrow_region(const FaceMesh& fm) {
     }
   if (!(count > 0) || !(perimeter > 0) || !(uv_area > 0)) return false;
   const double area = uv_area * element / count;
-  return 2 * area / perimeter < std::tan(12.0 * M_PI / 180.0) * h;
+  return 2 * area / perimeter < kSliverTan * h;
 }
 
 // Every edge of fm's boundary loops, as a front to close.

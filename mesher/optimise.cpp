@@ -163,7 +163,7 @@ BallMeasure measure_ball(const FaceMesh& fm, const FaceSurface& fs, const Balls&
     }
     const double angle = min_angle_deg(p[0]->p, p[1]->p, p[2]->p);
     m.angle = std::min(m.angle, angle);
-    m.thin += angle < 12;
+    m.thin += angle < kSliverDeg;
   }
   return m;
 }

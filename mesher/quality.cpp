@@ -72,7 +72,6 @@ std::array<double, 3> corner_angles(const SurfaceMesh& m, size_t t) {
 // goes below h_min.
 void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::vector<TriangleMeasure>& per,
                           MeshQuality& q) {
-  const double kNarrow = std::tan(12.0 * 3.14159265358979323846 / 180.0);
   // Mesh nodes a and b are consecutive on a B-rep curve shorter than h: its
   // segments are as short as the CAD makes them, whatever the size map asks.
   std::map<std::pair<int, int>, double> shortest;  // B-rep point pair -> shortest curve between them
@@ -135,7 +134,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
     for (int k = 0; k < 3; ++k)
       if (is_corner(tr[k])) corner[key(tr[k], t)] += a[k];
   }
-  auto sharp = [&](int node, size_t t) { return is_corner(node) && corner[key(node, t)] < 12; };
+  auto sharp = [&](int node, size_t t) { return is_corner(node) && corner[key(node, t)] < kSliverDeg; };
   // Per face: its sharp corner nodes and the curves leaving them.
   std::unordered_map<int, std::set<std::pair<int, int64_t>>> wedge;  // face -> {place_of}
   for (size_t t = 0; t < m.tris.size(); ++t)
@@ -157,7 +156,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
   };
   std::map<std::tuple<int, int, int>, int> uses;
   for (size_t t = 0; t < m.tris.size(); ++t)
-    if (q.min_angle[t] < 12)
+    if (q.min_angle[t] < kSliverDeg)
       for (int k = 0; k < 3; ++k) uses[edge_key(t, k)] = 0;
   for (size_t t = 0; t < m.tris.size() && !uses.empty(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -166,7 +165,7 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
     }
   q.sliver.assign(m.tris.size(), 0);
   for (size_t t = 0; t < m.tris.size(); ++t) {
-    if (!(q.min_angle[t] < 12)) continue;
+    if (!(q.min_angle[t] < kSliverDeg)) continue;
     const auto a = corner_angles(m, t);
     const int k = static_cast<int>(std::min_element(a.begin(), a.end()) - a.begin());
     bool forced = sharp(m.tris[t][k], t);
@@ -197,11 +196,11 @@ void count_forced_slivers(const SurfaceMesh& m, const Geometry& g, const std::ve
       // B-rep point, between the curves that meet there).
       const bool short_junction = is_corner(a) && is_corner(b) && (m.node_dim[a] == 2 || m.node_dim[b] == 2) &&
                                   uses[edge_key(t, e)] < 2;
-      const bool spans = (boundary_segments <= 1 && width < kNarrow * h) || (!along_curve && ratio[e] < kNarrow);
+      const bool spans = (boundary_segments <= 1 && width < kSliverTan * h) || (!along_curve && ratio[e] < kSliverTan);
       if (on_boundary && spans) {
         forced = true;
         ++q.narrow_below_12;
-      } else if (ratio[e] < kNarrow && (short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e]) ||
+      } else if (ratio[e] < kSliverTan && (short_curve_segment(a, b, (m.xyz[a] - m.xyz[b]).norm() / ratio[e]) ||
                                         short_junction)) {
         forced = true;
         ++q.short_curve_below_12;
@@ -271,7 +270,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
   for (size_t t = 0; t < nt; ++t) {
     const double ang = q.min_angle[t];
     q.histogram[std::min(9, static_cast<int>(ang / 6.0))]++;
-    if (ang < 12) ++q.below_12;
+    if (ang < kSliverDeg) ++q.below_12;
     if (ang < 24) ++q.below_24;
     q.worst_angle = std::min(q.worst_angle, ang);
     q.area += per[t].area;
