@@ -1002,7 +1002,14 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
       m.tri_uv.push_back(tri_uv[t]);
       fresh_sorted.push_back(is_fresh[t]);
     }
-    if (open_edges(m) > open_before) {
+    // Two faces meshed again on either side of a thin corner may both join
+    // the same two curve nodes by an inner edge (an edge used four times).
+    size_t open_now = open_edges(m);
+    if (open_now > open_before) {
+      flip_shared_inner_edges(m);
+      open_now = open_edges(m);
+    }
+    if (open_now > open_before) {
       // Faces whose new triangles leave an edge open or used more than twice
       // keep theirs next round.
       std::unordered_map<uint64_t, std::vector<int>> uses;

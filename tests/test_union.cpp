@@ -507,6 +507,22 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   CHECK(u["junction_nodes_unprojected"].get<int>() <= u["junction_nodes_off_surface"].get<int>());
 }
 
+TEST_CASE("the manta united at mesh level: faces meshed again on either side of a thin corner share no inner edge", "[models]") {
+  // The manta's body (face 9) and a neighbour (face 17) meet along two
+  // curves close together at a thin corner; each face, meshed again from its
+  // cut region, joins the same two curve nodes by an inner edge (used four
+  // times). The edge is flipped in one of them, as after the face mesher, or
+  // both faces kept their band of cut triangles (174 avoidable slivers).
+  const test::TempDir dir("manta_mesh_union");
+  const auto j = test::run_with_report(test::model_path("manta2_openvsp.stp") + " -q --mesh-union all -o " +
+                                           (dir / "m.vtu"),
+                                       (dir / "r.json"), 0);
+  CHECK(j["preparation"]["not_united"].empty());
+  check_one_closed_surface(j["mesh"]);
+  CHECK(j["mesh_union"]["faces_kept"] == 0);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 20);
+}
+
 TEST_CASE("a child process started after the parent used oneTBB works on every core and ends", "[union]") {
   std::atomic<int> warm{0};
   tbb::parallel_for(0, 100000, [&](int) { ++warm; });  // the parent's workers are up
