@@ -608,8 +608,9 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
       }
     return out;
   };
-  // The point of curve c nearest x, with its uv on each face of the
-  // triangles `tris` (projected from `start`, that face's uv near it).
+  // The point of `curve` nearest x, from the curve itself: snap() onto its
+  // two faces does not converge where they meet tangent (a leading edge
+  // split into upper and lower skins).
   auto on_curve = [&](int curve, const Vec3& x, Vec3& p) {
     double t = 0;
     try {

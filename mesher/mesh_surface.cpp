@@ -37,6 +37,7 @@ constexpr int kNarrowLeftover = 400;
 // degrees: ears across a strip a few elements wide are all about 12 degrees,
 // and the front does better there. Otherwise fm is left as it was.
 bool fill_narrow(FaceMesh& fm, const FaceSurface& fs, const std::vector<std::array<int, 2>>& open_edges) {
+  if (static_cast<int>(open_edges.size()) > kNarrowLeftover) return false;  // before copying a large face
   FaceMesh filled = fm;
   if (!fill_front(filled, fs, open_edges, EarTest::kCentroid, kNarrowLeftover)) return false;
   for (size_t t = fm.tris.size(); t < filled.tris.size(); ++t) {
