@@ -41,6 +41,7 @@ inline std::array<double, 3> corner_angles_deg(const Vec3& a, const Vec3& b, con
 // kSliverTan (tan of that angle) times its edge length is one, whatever its shape.
 constexpr double kSliverDeg = 12.0;
 constexpr double kSliverTan = 0.21255656167002213;
+constexpr double kSliverCos = 0.97814760073380569;  // cos of kSliverDeg
 
 // Smallest interior angle of a space triangle (degrees; 0 with a zero-length edge).
 inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {

@@ -1,5 +1,8 @@
 #include "mesher/mesh_union.h"
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -22,7 +25,10 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "geometry/background_mesh.h"
+#include "geometry/predicates.h"
 #include "geometry/triangle_bvh.h"
+#include "mesher/quality.h"
 #include "mesher/self_intersection.h"
 #include "mesher/snap.h"
 #include "mesher/target_sizes.h"
@@ -126,6 +132,118 @@ bool inside_base(const Mesh& m, const std::vector<FI>& tris, const Mesh& base) {
     for (VI v : CGAL::vertices_around_face(m.halfedge(f), m))
       if (side(m.point(v)) != CGAL::ON_BOUNDED_SIDE) return false;
   return true;
+}
+
+// Two components that lie on each other across a slot too thin for the mesh
+// (a fin whose flat root face floats a few thousandths above a ridged
+// fuselage, a pod resting on a wing) meet at a grazing angle, if at all:
+// every triangle along such a cut, or across such a slot, would be a sliver.
+// The slot is closed: the nodes of one side whose mean normal line meets the
+// other side, facing it (normals opposed within 12 degrees: the surfaces
+// meet, or would, in a wedge as thin as a sliver), less than half
+// the local size outside it or less than a quarter inside, go a quarter of
+// the local size into it along that line, where whole triangles of them do
+// (a node alone, or a line of them, is a dent, not a slot). Their triangles
+// are then inside the other component and dropped by the union, and the cut
+// runs where the side's walls enter the other, at a steep angle.
+//
+// The side moved is the one with more nodes on the slot, the one that
+// resolves it (a fin's root face, finer than the fuselage under it); the cut
+// then lies on the other side's surface. A move that would make its side
+// cross itself is undone.
+struct GapSide {
+  std::vector<std::pair<VI, Point>> moves;
+};
+
+GapSide gap_moves(const Tracked& side, const Mesh& other, const std::vector<double>& node_h) {
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  GapSide out;
+  const Mesh& m = side.m;
+  double reach = 0;
+  for (VI v : m.vertices())
+    if (side.node[v] >= 0) reach = std::max(reach, 0.5 * node_h[side.node[v]]);
+  if (!(reach > 0)) return out;
+  auto grow = [reach](const CGAL::Bbox_3& b) {
+    return CGAL::Bbox_3(b.xmin() - reach, b.ymin() - reach, b.zmin() - reach, b.xmax() + reach, b.ymax() + reach,
+                        b.zmax() + reach);
+  };
+  const CGAL::Bbox_3 box = grow(PMP::bbox(m)), other_box = grow(PMP::bbox(other));
+  std::vector<FI> near;
+  for (FI f : other.faces())
+    if (CGAL::do_overlap(PMP::face_bbox(f, other), box)) near.push_back(f);
+  if (near.empty()) return out;
+  const Tree tree(near.begin(), near.end(), other);
+  std::map<VI, Point> to;
+  for (VI v : m.vertices()) {
+    const int n = side.node[v];
+    if (n < 0 || !(node_h[n] > 0) || !CGAL::do_overlap(m.point(v).bbox(), other_box)) continue;
+    K::Vector_3 normal(0, 0, 0);
+    for (FI g : CGAL::faces_around_target(m.halfedge(v), m))
+      if (g != Mesh::null_face()) normal = normal + PMP::compute_face_normal(g, m);
+    if (normal.squared_length() == 0) continue;
+    normal = normal / std::sqrt(normal.squared_length());
+    const Point& x = m.point(v);
+    const double gap = 0.5 * node_h[n], depth = 0.25 * node_h[n];
+    // The nearest crossing of the normal line within [-depth, gap] whose
+    // triangle faces this side.
+    double best = HUGE_VAL;
+    Point hit = x;
+    for (int dir : {1, -1}) {
+      const K::Ray_3 ray(x, dir * normal);
+      std::vector<Tree::Intersection_and_primitive_id<K::Ray_3>::Type> hits;
+      tree.all_intersections(ray, std::back_inserter(hits));
+      for (const auto& [obj, f] : hits) {
+        const Point* q = boost::get<Point>(&obj);
+        if (!q) continue;
+        const double t = std::sqrt(CGAL::to_double(CGAL::squared_distance(x, *q)));
+        if (t > (dir > 0 ? gap : depth) || t >= std::abs(best)) continue;
+        if (!(CGAL::to_double(PMP::compute_face_normal(f, other) * normal) < -kSliverCos)) continue;
+        best = dir * t, hit = *q;
+      }
+    }
+    if (best != HUGE_VAL) to[v] = hit + depth * normal;
+  }
+  // Only where whole triangles face across the slot.
+  for (const auto& [v, x] : to) {
+    bool whole = false;
+    for (FI g : CGAL::faces_around_target(m.halfedge(v), m)) {
+      if (g == Mesh::null_face()) continue;
+      bool all = true;
+      for (VI w : CGAL::vertices_around_face(m.halfedge(g), m)) all = all && to.count(w);
+      whole = whole || all;
+    }
+    if (whole) out.moves.push_back({v, x});
+  }
+  return out;
+}
+
+// Moves `g` on `side`; false (and nothing moved) when it would cross itself.
+bool apply_gap_moves(Tracked& side, const GapSide& g) {
+  Mesh& m = side.m;
+  std::vector<Point> was;
+  CGAL::Bbox_3 moved;
+  for (const auto& [v, x] : g.moves) {
+    was.push_back(m.point(v));
+    moved += x.bbox() + m.point(v).bbox();
+    m.point(v) = x;
+  }
+  if (!crosses_within(m, moved)) return true;
+  for (size_t i = 0; i < g.moves.size(); ++i) m.point(g.moves[i].first) = was[i];
+  return false;
+}
+
+// Closes the slots between `part` and `base` (see GapSide); the source nodes
+// moved go to `moved`.
+void close_gaps(Tracked& part, Tracked& base, const std::vector<double>& node_h, std::set<int>& moved) {
+  GapSide on_part = gap_moves(part, base.m, node_h), on_base = gap_moves(base, part.m, node_h);
+  if (on_part.moves.empty() && on_base.moves.empty()) return;
+  // The side with more nodes on the slot resolves it, and moves; a tie moves the part.
+  const bool base_moves = on_base.moves.size() > on_part.moves.size();
+  Tracked& side = base_moves ? base : part;
+  const GapSide& g = base_moves ? on_base : on_part;
+  if (!apply_gap_moves(side, g)) return;
+  for (const auto& mv : g.moves) moved.insert(side.node[mv.first]);
 }
 
 // Triangles the corefinement made without telling its visitor (it splits a
@@ -560,6 +678,8 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   // in the base: it joins only if its fold lies inside the base (the union
   // drops it there) and the union is then free of crossings.
   std::vector<size_t> waiting;
+  // Source nodes moved to close a slot (close_gaps()): off their CAD faces.
+  std::set<int> gap_moved;
   auto take = [&](size_t i, bool last_pass) {
     const bool is_part = i >= rest_pieces;
     auto fail = [&](const std::string& why) {
@@ -586,6 +706,8 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       return;
     }
     auto before = std::make_unique<Tracked>(*base);
+    std::set<int> moved_now;
+    if (!folded) close_gaps(*part, *base, node_h, moved_now);
     // A union of volumes holds the larger of the two and no more than both:
     // a corefinement that went wrong (a folded skin) can give less, even
     // nothing, and still cross nowhere. A folded piece's own volume counts
@@ -630,6 +752,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
       }
       return fail(wrong);
     }
+    gap_moved.insert(moved_now.begin(), moved_now.end());
     adopt_orphans(*base);
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
@@ -638,6 +761,7 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (size_t i = 0; i < pieces.size(); ++i) take(i, false);
   for (size_t i : waiting) take(i, true);
   for (size_t p = 0; p < parts.size(); ++p) out.united += out.failures[p].empty();
+  out.gap_nodes_closed = static_cast<int>(gap_moved.size());
   if (!base) base = std::make_unique<Tracked>();
   renumber(*base);
   remesh_bands(*base, s, g, node_h, near_cut, out);
@@ -659,6 +783,12 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (EI e : m.edges())
     if (base->cut[e]) on_cut[m.vertex(e, 0)] = on_cut[m.vertex(e, 1)] = true;
   for (VI v : m.vertices()) xyz[v] = vec(m.point(v));
+  auto displaced = [&](FI f) {
+    if (gap_moved.empty() || base->tri[f] < 0) return false;
+    for (int n : s.tris[base->tri[f]])
+      if (gap_moved.count(n)) return true;
+    return false;
+  };
   // uv on source triangle t of the point of t nearest x; `dist` its distance.
   auto uv_on = [&](int t, const Vec3& x, double& dist) {
     const auto& tr = s.tris[t];
@@ -669,11 +799,14 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
   for (VI v : m.vertices()) {
     const int n = base->node[v];
     if (n >= 0 && (xyz[v] - s.xyz[n]).norm() == 0) continue;
+    // Its faces: those of the triangles around it, but for a triangle moved
+    // off its surface to close a slot.
     std::vector<int> faces;
     std::vector<FI> around;
     for (FI f : CGAL::faces_around_target(m.halfedge(v), m)) {
       if (f == Mesh::null_face()) continue;
       around.push_back(f);
+      if (displaced(f)) continue;
       if (std::find(faces.begin(), faces.end(), base->face[f]) == faces.end()) faces.push_back(base->face[f]);
     }
     if (faces.empty() || faces.size() > 4) continue;
@@ -849,8 +982,64 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     if (base->cut[e]) out.junction.push_back({used[id[m.vertex(e, 0)]], used[id[m.vertex(e, 1)]]});
   // Each junction node's distance from each of its surfaces, as it ends.
   for (auto& [v, on] : junction_faces) count_junction_node(out, g, r.xyz[used[id[v]]], std::move(on), 1e-9 * diag);
+  if (!gap_moved.empty()) out.gap_walls = adopt_gap_walls(r, g, out.junction);
   s = std::move(r);
   return out;
+}
+
+int adopt_gap_walls(SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction) {
+  std::set<int> on_junction;
+  for (const auto& [a, b] : junction) on_junction.insert(a), on_junction.insert(b);
+  std::vector<int> turned;
+  for (size_t t = 0; t < s.tris.size(); ++t) {
+    bool near = false;
+    for (int n : s.tris[t]) near = near || on_junction.count(n);
+    if (near && inverted_triangle(s, g, t)) turned.push_back(static_cast<int>(t));
+  }
+  if (turned.empty()) return 0;
+  std::unordered_map<uint64_t, std::vector<int>> edge_tris;
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) edge_tris[edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
+  auto normal = [&](int t) {
+    const auto& tr = s.tris[t];
+    return Vec3((s.xyz[tr[1]] - s.xyz[tr[0]]).cross(s.xyz[tr[2]] - s.xyz[tr[0]]).normalized());
+  };
+  int adopted = 0;
+  for (int t : turned) {
+    const Vec3 nt = normal(t);
+    for (int k = 0; k < 3; ++k) {
+      int other = -1;
+      for (int u : edge_tris[edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3])])
+        if (u != t && s.tri_face[u] != s.tri_face[t] && !inverted_triangle(s, g, u) && normal(u).dot(nt) > 0.7)
+          other = u;
+      if (other < 0) continue;
+      // uv on the neighbour's face: the shared corners' from it, the third
+      // the nearest point there.
+      const int face = s.tri_face[other];
+      std::array<Vec2, 3> uv;
+      for (int j = 0; j < 3; ++j) {
+        const int n = s.tris[t][j];
+        const auto at = std::find(s.tris[other].begin(), s.tris[other].end(), n);
+        if (at != s.tris[other].end()) {
+          uv[j] = s.tri_uv[other][at - s.tris[other].begin()];
+        } else {
+          uv[j] = (s.tri_uv[other][0] + s.tri_uv[other][1] + s.tri_uv[other][2]) / 3.0;
+          g.nearest_on_face(face, s.xyz[n], uv[j]);
+        }
+      }
+      const int was_face = s.tri_face[t];
+      const std::array<Vec2, 3> was_uv = s.tri_uv[t];
+      s.tri_face[t] = face;
+      s.tri_uv[t] = uv;
+      if (!inverted_triangle(s, g, t)) {
+        ++adopted;
+        break;
+      }
+      s.tri_face[t] = was_face;
+      s.tri_uv[t] = was_uv;
+    }
+  }
+  return adopted;
 }
 
 }  // namespace sizemesh

@@ -373,3 +373,52 @@ TEST_CASE("a solid read with a face turned inside out is mended before the union
   // A's area 10; each end cube adds its 5 faces of 0.25 and hides 0.25 of A.
   require_clean(*r, 10.0 + 2 * (5 * 0.25 - 0.25));
 }
+
+TEST_CASE("a box resting on another across a slot thinner than the mesh is united with it, the slot closed") {
+  // B's floor lies 0.004 above A's top, a fifth of h_min = 0.02: the size
+  // map cannot resolve the slot, and every triangle across it or along a
+  // grazing cut would be a sliver. The side that resolves the slot moves
+  // into the other; B's sides then meet A's top.
+  const test::TempDir dir("mesh_union_slot");
+  const double slot = 0.004;
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(2.0, 2.0, 1.0).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(0.5, 0.5, 1.0 + slot), 1.0, 1.0, 0.5).Shape();
+  RunOptions o;
+  o.input = write_compound({a, b}, dir / "slot.brep");
+  o.verbose = false;
+  o.load.mesh_union_all = true;
+  o.sizing.h_min = 0.02;
+  o.sizing.h_max = 0.1;
+  auto r = size_model(o, [](const std::string&) {});
+  mesh_model(*r, o, [](const std::string&) {});
+  const Preparation& p = r->model->info().preparation;
+  REQUIRE(p.components.size() == 2);
+  CHECK(p.not_united.empty());
+  CHECK(r->exit_code() == kOk);
+  CHECK(r->report.mesh_union.united == 2);
+  CHECK(r->report.mesh_union.gap_nodes_closed > 0);
+  // A's 16 less B's footprint, B's top and its sides down to A's top; the
+  // slot left open would add B's floor and A's top under it (19.98).
+  require_clean(*r, 18.0);
+  // One surface: every triangle reached from the first across its edges.
+  std::map<std::pair<int, int>, std::vector<int>> edge_tris;
+  for (size_t t = 0; t < r->mesh.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int u = r->mesh.tris[t][k], v = r->mesh.tris[t][(k + 1) % 3];
+      edge_tris[{std::min(u, v), std::max(u, v)}].push_back(static_cast<int>(t));
+    }
+  std::vector<char> seen(r->mesh.tris.size(), 0);
+  std::vector<int> stack{0};
+  seen[0] = 1;
+  size_t reached = 1;
+  while (!stack.empty()) {
+    const int t = stack.back();
+    stack.pop_back();
+    for (int k = 0; k < 3; ++k) {
+      const int u = r->mesh.tris[t][k], v = r->mesh.tris[t][(k + 1) % 3];
+      for (int n : edge_tris[{std::min(u, v), std::max(u, v)}])
+        if (!seen[n]) seen[n] = 1, ++reached, stack.push_back(n);
+    }
+  }
+  CHECK(reached == r->mesh.tris.size());
+}

@@ -291,20 +291,20 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // and tails' roots and the canopy's base lie inside the fuselage).
   CHECK(j["mesh"]["area"].get<double>() > 0.6 * cad_area);
   CHECK(j["mesh"]["area"].get<double>() < 0.75 * cad_area);
-  // The fin's root section lies on the fuselage's top within 0.03 ft (the
-  // fuselage's top is at z = 2.56-2.59, the fin's root at 2.587): meshed
-  // again each on its own, the two sides of that junction cross within
-  // their chords, and a face that kept its band triangles for it would keep
-  // them along all its junctions (the fuselage's two faces: hundreds of
-  // triangles under 12 degrees). The band's triangles around the crossings
-  // are held and the rest of every cut face is meshed again: no face keeps
-  // all its triangles and none is turned over. The canopy's floor lies
-  // 0.002-0.007 above the fuselage's: its slot holds most of the 66 of the
-  // 159,000 triangles avoidably under 12 degrees.
+  // The fin's flat root face lies on the fuselage's ridged top at a 5 degree
+  // angle: the fuselage pierces it along the middle, and beside that it
+  // floats up to 0.0095 ft above the fuselage (h_min 0.026): a slot the mesh
+  // cannot resolve, whose grazing cut and thin sides held most of the 66
+  // triangles avoidably under 12 degrees. The slot is closed (the root face,
+  // the side that resolves it, moves into the fuselage), and the fin's sides
+  // meet the fuselage steeply: no face keeps all its triangles, none is
+  // turned over, and 18 of the 157,000 triangles are avoidably under 12
+  // degrees (the wings' trailing edges and strakes, not the fin).
+  CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 75);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 20);
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
