@@ -25,10 +25,8 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "geometry/background_mesh.h"
 #include "geometry/predicates.h"
 #include "geometry/triangle_bvh.h"
-#include "mesher/quality.h"
 #include "mesher/self_intersection.h"
 #include "mesher/snap.h"
 #include "mesher/target_sizes.h"
@@ -982,64 +980,8 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeFuncti
     if (base->cut[e]) out.junction.push_back({used[id[m.vertex(e, 0)]], used[id[m.vertex(e, 1)]]});
   // Each junction node's distance from each of its surfaces, as it ends.
   for (auto& [v, on] : junction_faces) count_junction_node(out, g, r.xyz[used[id[v]]], std::move(on), 1e-9 * diag);
-  if (!gap_moved.empty()) out.gap_walls = adopt_gap_walls(r, g, out.junction);
   s = std::move(r);
   return out;
-}
-
-int adopt_gap_walls(SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction) {
-  std::set<int> on_junction;
-  for (const auto& [a, b] : junction) on_junction.insert(a), on_junction.insert(b);
-  std::vector<int> turned;
-  for (size_t t = 0; t < s.tris.size(); ++t) {
-    bool near = false;
-    for (int n : s.tris[t]) near = near || on_junction.count(n);
-    if (near && inverted_triangle(s, g, t)) turned.push_back(static_cast<int>(t));
-  }
-  if (turned.empty()) return 0;
-  std::unordered_map<uint64_t, std::vector<int>> edge_tris;
-  for (size_t t = 0; t < s.tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) edge_tris[edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
-  auto normal = [&](int t) {
-    const auto& tr = s.tris[t];
-    return Vec3((s.xyz[tr[1]] - s.xyz[tr[0]]).cross(s.xyz[tr[2]] - s.xyz[tr[0]]).normalized());
-  };
-  int adopted = 0;
-  for (int t : turned) {
-    const Vec3 nt = normal(t);
-    for (int k = 0; k < 3; ++k) {
-      int other = -1;
-      for (int u : edge_tris[edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3])])
-        if (u != t && s.tri_face[u] != s.tri_face[t] && !inverted_triangle(s, g, u) && normal(u).dot(nt) > 0.7)
-          other = u;
-      if (other < 0) continue;
-      // uv on the neighbour's face: the shared corners' from it, the third
-      // the nearest point there.
-      const int face = s.tri_face[other];
-      std::array<Vec2, 3> uv;
-      for (int j = 0; j < 3; ++j) {
-        const int n = s.tris[t][j];
-        const auto at = std::find(s.tris[other].begin(), s.tris[other].end(), n);
-        if (at != s.tris[other].end()) {
-          uv[j] = s.tri_uv[other][at - s.tris[other].begin()];
-        } else {
-          uv[j] = (s.tri_uv[other][0] + s.tri_uv[other][1] + s.tri_uv[other][2]) / 3.0;
-          g.nearest_on_face(face, s.xyz[n], uv[j]);
-        }
-      }
-      const int was_face = s.tri_face[t];
-      const std::array<Vec2, 3> was_uv = s.tri_uv[t];
-      s.tri_face[t] = face;
-      s.tri_uv[t] = uv;
-      if (!inverted_triangle(s, g, t)) {
-        ++adopted;
-        break;
-      }
-      s.tri_face[t] = was_face;
-      s.tri_uv[t] = was_uv;
-    }
-  }
-  return adopted;
 }
 
 }  // namespace sizemesh

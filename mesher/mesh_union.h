@@ -35,7 +35,6 @@ struct MeshUnionResult {
   int rest_pieces_apart = 0;          // closed pieces of the rest that could not take part (their mesh intersects itself)
   int junction_nodes = 0;             // nodes on the cut curves, on both CAD surfaces
   int gap_nodes_closed = 0;           // nodes moved across a slot too thin for the mesh into the other side
-  int gap_walls = 0;                  // triangles of a closed slot's wall given the face they continue
   int band_triangles = 0;             // triangles of the remeshed bands
   int band_classes_undone = 0;        // size classes whose band remesh was undone (it made the surface cross itself)
   int junction_nodes_off = 0;         // of those, nodes left on the meshes (surfaces meeting at a grazing angle)
@@ -55,17 +54,5 @@ void count_junction_node(MeshUnionResult& u, const Geometry& g, const Vec3& x,
 
 MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeFunction& h,
                              const std::vector<std::vector<int>>& parts);
-
-// A slot closed by the union (a fin's root face a few thousandths above the
-// fuselage, moved into it) leaves, where the moved face ended at a sharp edge,
-// a strip of it standing as a wall from that edge down to the other
-// component: the continuation of the face across the edge (the fin's side),
-// turned against its own face's surface. Each triangle at a junction that is
-// turned against its face's surface takes the face of a neighbour across an
-// edge that it continues (normals within 45 degrees) when it agrees with
-// that face's surface, uv the nearest points there. unite_meshes() calls it
-// (so that the cut faces' regions hold no wall), and the pipeline again after
-// the cut faces are meshed. Returns the triangles that changed face.
-int adopt_gap_walls(SurfaceMesh& s, const Geometry& g, const std::vector<std::array<int, 2>>& junction);
 
 }  // namespace sizemesh

@@ -161,8 +161,6 @@ void unite_at_mesh_level(RunResult& r, const MeshOptions& meshing) {
       parts[it->second].push_back(f);
   r.report.mesh_union = unite_meshes(r.mesh, model, *r.query, parts);
   r.report.cut_faces = remesh_cut_faces(r.mesh, model, *r.query, meshing, r.report.mesh_union);
-  if (r.report.mesh_union.gap_nodes_closed > 0)
-    r.report.mesh_union.gap_walls += adopt_gap_walls(r.mesh, model, r.report.mesh_union.junction);
   for (size_t i = 0; i < left.size(); ++i) model.record_mesh_union(left[i], r.report.mesh_union.failures[i]);
 }
 

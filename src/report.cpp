@@ -140,7 +140,6 @@ nlohmann::json report_json(const RunReport& r) {
                                                 [](const std::string& f) { return !f.empty(); })},
                        {"rest_pieces_apart", r.mesh_union.rest_pieces_apart},
                        {"gap_nodes_closed", r.mesh_union.gap_nodes_closed},
-                       {"gap_walls", r.mesh_union.gap_walls},
                        {"junction_nodes", r.mesh_union.junction_nodes},
                        {"junction_nodes_off_surface", r.mesh_union.junction_nodes_off},
                        {"band_triangles", r.mesh_union.band_triangles},
