@@ -32,12 +32,14 @@ namespace {
 
 using test::write_compound;
 
-std::unique_ptr<RunResult> mesh_file(const std::string& path, const LoadOptions& load, double h_max = 0) {
+std::unique_ptr<RunResult> mesh_file(const std::string& path, const LoadOptions& load, double h_max = 0,
+                                     double h_min = 0) {
   RunOptions o;
   o.input = path;
   o.verbose = false;
   o.load = load;
   if (h_max > 0) o.sizing.h_max = h_max;
+  if (h_min > 0) o.sizing.h_min = h_min;
   auto r = size_model(o, [](const std::string&) {});
   mesh_model(*r, o, [](const std::string&) {});
   return r;
@@ -383,14 +385,9 @@ TEST_CASE("a box resting on another across a slot thinner than the mesh is unite
   const double slot = 0.004;
   const TopoDS_Shape a = BRepPrimAPI_MakeBox(2.0, 2.0, 1.0).Shape();
   const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(0.5, 0.5, 1.0 + slot), 1.0, 1.0, 0.5).Shape();
-  RunOptions o;
-  o.input = write_compound({a, b}, dir / "slot.brep");
-  o.verbose = false;
-  o.load.mesh_union_all = true;
-  o.sizing.h_min = 0.02;
-  o.sizing.h_max = 0.1;
-  auto r = size_model(o, [](const std::string&) {});
-  mesh_model(*r, o, [](const std::string&) {});
+  LoadOptions load;
+  load.mesh_union_all = true;
+  const auto r = mesh_file(write_compound({a, b}, dir / "slot.brep"), load, 0.1, 0.02);
   const Preparation& p = r->model->info().preparation;
   REQUIRE(p.components.size() == 2);
   CHECK(p.not_united.empty());
