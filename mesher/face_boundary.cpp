@@ -227,4 +227,19 @@ int steady_boundary_normals(FaceMesh& fm, const FaceSurface& fs) {
   return changed;
 }
 
+FaceMesh off_bands(const FaceMesh& fm, FaceSurface& fs) {
+  if (!fs.has_band()) return fm;
+  FaceMesh out = fm;
+  for (int i = 0; i < out.num_nodes(); ++i) {
+    if (out.pole[i]) continue;
+    const Vec2 uv = fs.off_band(out.uv[i]);
+    if (uv == out.uv[i]) continue;
+    out.uv[i] = uv;
+    const Vec3 shared = out.shared_xyz[i];
+    out.s[i] = fs.eval(uv);
+    out.shared_xyz[i] = shared;
+  }
+  return out;
+}
+
 }  // namespace sizemesh

@@ -27,4 +27,10 @@ FaceMesh face_boundary(const Geometry& g, const CurveMesh& cm, FaceSurface& fs);
 // tip narrower than h) is left alone. Returns the number of nodes changed.
 int steady_boundary_normals(FaceMesh& fm, const FaceSurface& fs);
 
+// fm's nodes moved out of the bands where the surface does not move across
+// (FaceSurface::off_band), their samples taken again there: on a band's edge
+// the derivatives vanish across it, the normal is undefined and the front
+// cannot place points from it. Positions in the assembled mesh are kept.
+FaceMesh off_bands(const FaceMesh& fm, FaceSurface& fs);
+
 }  // namespace sizemesh

@@ -1,6 +1,7 @@
 #include "mesher/face_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sizemesh {
@@ -13,6 +14,49 @@ Vec3 unit_normal(const SurfaceD1& d) {
   return len > 1e-9 * (d.du.squaredNorm() + d.dv.squaredNorm()) && len > 0 ? Vec3(n / len) : Vec3(Vec3::Zero());
 }
 
+// Depth, in the surface's uv, of the band along one side of the box (axis 0:
+// a side u = const; `high`: the side at the upper bound) across which the
+// surface stays on the side's own curve in space; 0 where it moves at once.
+// Found by bisection on the largest move of points spread along the side.
+double band_depth(const Geometry& g, int face, const UVBox& box, int axis, bool high) {
+  constexpr int kSamples = 17;
+  const int other = 1 - axis;
+  const double range = box.hi[axis] - box.lo[axis], side = high ? box.hi[axis] : box.lo[axis];
+  if (!(range > 0) || !std::isfinite(range)) return 0;
+  std::array<Vec2, kSamples> at;
+  std::array<Vec3, kSamples> p;
+  double along = 0;  // length of the side's curve in space
+  try {
+    for (int k = 0; k < kSamples; ++k) {
+      at[k][axis] = side;
+      at[k][other] = box.lo[other] + (box.hi[other] - box.lo[other]) * k / (kSamples - 1);
+      p[k] = g.eval_face(face, at[k]).p;
+      if (k > 0) along += (p[k] - p[k - 1]).norm();
+    }
+  } catch (const EvaluationError&) {
+    return 0;
+  }
+  // A pole (the side one point) has no band: it moves at once across.
+  const double still = 1e-9 * along;
+  if (!(still > 0) || !std::isfinite(still)) return 0;
+  auto moves = [&](double depth) {
+    try {
+      for (int k = 0; k < kSamples; ++k) {
+        Vec2 uv = at[k];
+        uv[axis] += high ? -depth : depth;
+        if (!((g.eval_face(face, uv).p - p[k]).norm() <= still)) return true;
+      }
+      return false;
+    } catch (const EvaluationError&) {
+      return true;
+    }
+  };
+  double lo = 1e-4 * range, hi = 0.5 * range;
+  if (moves(lo) || !moves(hi)) return 0;
+  for (int i = 0; i < 60 && hi - lo > 1e-12 * range; ++i) (moves(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return hi;
+}
+
 }  // namespace
 
 FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
@@ -22,7 +66,34 @@ FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
       period_u_(g.face_period_u(face)),
       period_v_(g.face_period_v(face)),
       fallback_h_(std::max(g.face_boundary_length(face) / 12, 1e-300)),
-      stretch_(g, face) {}
+      stretch_(g, face) {
+  box_ = live_ = g.face_uv_bounds(face);
+  const double period[2] = {period_u_, period_v_};
+  const UVBox& box = box_;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (period[axis] > 0) continue;
+    const double lo = band_depth(g, face, box, axis, false), hi = band_depth(g, face, box, axis, true);
+    if (lo + hi >= box.hi[axis] - box.lo[axis]) continue;
+    live_.lo[axis] += lo;
+    live_.hi[axis] -= hi;
+    banded_ = banded_ || lo > 0 || hi > 0;
+  }
+}
+
+Vec2 FaceSurface::off_band(const Vec2& uv) const {
+  if (!banded_) return uv;
+  const Vec2 su = to_surface(uv);
+  Vec2 in = su;
+  for (int axis = 0; axis < 2; ++axis) {
+    const UVBox& box = box_;
+    // Only inside a band: beyond the box (a pcurve past its bounds) stays.
+    if (su[axis] < live_.lo[axis] && su[axis] >= box.lo[axis] - 1e-9 * (box.hi[axis] - box.lo[axis]))
+      in[axis] = live_.lo[axis];
+    if (su[axis] > live_.hi[axis] && su[axis] <= box.hi[axis] + 1e-9 * (box.hi[axis] - box.lo[axis]))
+      in[axis] = live_.hi[axis];
+  }
+  return in == su ? uv : to_mesher(in);
+}
 
 bool FaceSurface::turned_at_centroid(const Vec2& ua, const Vec2& ub, const Vec2& uc, const Vec3& nt) const {
   try {
@@ -65,7 +136,7 @@ bool FaceSurface::project(const Vec3& xyz, Vec2& uv) const {
   Vec2 su = stretch_.to_surface(uv);
   if (!g_.project_to_face(face_, xyz, su)) return false;
   if (!std::isfinite(su.x()) || !std::isfinite(su.y())) return false;
-  uv = unwrap(stretch_.to_mesher(su), start);  // periodic directions are never stretched
+  uv = off_band(unwrap(stretch_.to_mesher(su), start));  // periodic directions are never stretched
   return true;
 }
 

@@ -50,6 +50,13 @@ class FaceSurface {
   bool project(const Vec3& xyz, Vec2& uv) const;
   // uv shifted by whole periods to lie closest to `near`.
   Vec2 unwrap(Vec2 uv, const Vec2& near) const;
+  // uv moved out of a band along a side of the uv box where the surface does
+  // not move across it (a knot span whose control points coincide row by
+  // row, as some exporters write at a trailing edge): to the band's inner
+  // edge, the same point in space where the derivatives are defined again.
+  // uv itself where the face has no such band.
+  Vec2 off_band(const Vec2& uv) const;
+  bool has_band() const { return banded_; }
   // Between the mesher's uv and the surface's own parameters.
   Vec2 to_surface(const Vec2& uv) const { return stretch_.to_surface(uv); }
   Vec2 to_mesher(const Vec2& uv) const { return stretch_.to_mesher(uv); }
@@ -66,6 +73,9 @@ class FaceSurface {
   double period_u_, period_v_;
   double fallback_h_;  // used where h is not a positive number
   UvStretch stretch_;
+  UVBox box_;            // the face's uv box (surface uv)
+  UVBox live_;           // the same without its bands
+  bool banded_ = false;
 };
 
 }  // namespace sizemesh

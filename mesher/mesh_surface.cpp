@@ -96,11 +96,12 @@ struct FaceResult {
   double seconds_front = 0, seconds_optimise = 0;
 };
 
-// The inside of a face from its boundary `raw` (mesher uv): the front's
+// The inside of a face from its boundary `given` (mesher uv): the front's
 // strategies, then the optimiser. Throws the kernel's Error.
-void mesh_inside(const FaceMesh& raw, FaceSurface& fs, const MeshOptions& o, FaceResult& r) {
+void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, FaceResult& r) {
   const int face = fs.face();
   Stopwatch clock;
+  const FaceMesh raw = off_bands(given, fs);
   FaceMesh steady = raw;
   const bool curled = steady_boundary_normals(steady, fs) > 0;
   const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;

@@ -1,5 +1,6 @@
 // The advancing front ends on every input and never leaves its region: a face
-// of the OpenVSP manta where it once ran away without end, the step budget,
+// of the OpenVSP manta where it once ran away without end, a face whose
+// surface stalls across a band at its boundary, the step budget,
 // the ear-clipping fill of a front's leftover, and the triangle estimate that
 // sets the budget.
 #include <catch2/catch.hpp>
@@ -89,6 +90,52 @@ TEST_CASE("every front strategy stays inside the face where a front once ran awa
   // The whole model now meshes, every face closed.
   const SurfaceMesh m = mesh_surface(s.model, query);
   CHECK(m.failures.empty());
+}
+
+TEST_CASE("the front advances from a trailing edge where the surface stalls across a band (F-16 VSP 3.11 face 32)", "[front]") {
+  // The horizontal tail's upper skin: v runs 0 to 121 from the trailing edge,
+  // and over its first knot span (v < 1) every row of control points is one
+  // point, so the surface stays on the trailing edge with dS/dv = 0 there.
+  // The curve nodes' uv lie at v = 0, where the normal is undefined and no
+  // front point can be placed.
+  Sized s("f16_vsp311_openvsp.stp");
+  const SizeQuery query = size_query_for(s.model, s.bg, s.h.h);
+  const CurveMesh cm = discretise_curves(s.model, query);
+  FaceSurface fs(s.model, query, 32);
+  REQUIRE(fs.has_band());
+  const FaceMesh raw = face_boundary(s.model, cm, fs);
+  const FaceMesh lifted = off_bands(raw, fs);
+  REQUIRE(lifted.num_nodes() == raw.num_nodes());
+  int moved = 0;
+  for (int i = 0; i < raw.num_nodes(); ++i) {
+    if (lifted.uv[i] == raw.uv[i]) continue;
+    ++moved;
+    // The same point in space, now where the surface has a normal.
+    CHECK((lifted.s[i].p - raw.s[i].p).norm() < 1e-7);
+    CHECK(lifted.position(i) == raw.position(i));
+    CHECK(raw.s[i].n.squaredNorm() == 0);
+    CHECK(lifted.s[i].n.norm() == Approx(1.0));
+  }
+  CHECK(moved >= 10);  // every trailing-edge node, and the two corners
+  // Every strict front strategy: how many edges it leaves open at the
+  // trailing edge (x = 15). From the band's edge the front advances; from
+  // v = 0 it cannot, and the face was closed by the lenient fallback with a
+  // fan of slivers there.
+  const TriangleEstimate e = estimate_triangles(s.bg, s.h.h, s.h.limit, s.model.num_faces());
+  const long long budget = front_step_budget(e.per_face[32], raw.num_nodes());
+  auto open_at_trailing_edge = [&](const FaceMesh& boundary) {
+    int open = 0;
+    for (int strategy = 0; strategy < kStrategyCount; ++strategy) {
+      FaceMesh fm = boundary;
+      const FrontResult r = advancing_front(fm, fs, strategy, budget, false);
+      CHECK(triangles_area(fm) > 0);
+      CHECK(triangles_area(fm) <= loops_area(boundary) * (1 + 1e-9));
+      for (const auto& [a, b] : r.open_edges) open += fm.s[a].p.x() > 14.9 || fm.s[b].p.x() > 14.9;
+    }
+    return open;
+  };
+  CHECK(open_at_trailing_edge(raw) > 0);
+  CHECK(open_at_trailing_edge(lifted) == 0);
 }
 
 TEST_CASE("a spent step budget stops the front with a reason, never more triangles than steps", "[front]") {

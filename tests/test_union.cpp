@@ -298,13 +298,15 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // triangles avoidably under 12 degrees. The slot is closed (the root face,
   // the side that resolves it, moves into the fuselage), and the fin's sides
   // meet the fuselage steeply: no face keeps all its triangles, none is
-  // turned over, and 18 of the 157,000 triangles are avoidably under 12
-  // degrees (the wings' trailing edges and strakes, not the fin).
+  // turned over. The horizontal tail's upper skin stalls across a band at
+  // its trailing edge (test_front): meshed from the band's edge, it no
+  // longer ends in a fan of 7 slivers there, and 11 of the 157,000 triangles
+  // are avoidably under 12 degrees (strakes, nose and the fin's trailing edge).
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 20);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 12);
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
