@@ -96,6 +96,23 @@ struct FaceResult {
   double seconds_front = 0, seconds_optimise = 0;
 };
 
+// Some triangle of fm turned against the surface at its uv centroid, or of
+// zero area in space.
+bool any_turned(const FaceMesh& fm, const FaceSurface& fs) {
+  for (const auto& t : fm.tris) {
+    const Vec3 &a = fm.s[t[0]].p, &b = fm.s[t[1]].p, &c = fm.s[t[2]].p;
+    if (fs.turned_at_centroid(fm.uv[t[0]], fm.uv[t[1]], fm.uv[t[2]], (b - a).cross(c - a))) return true;
+  }
+  return false;
+}
+
+// Triangles of fm whose smallest angle in space is under 12 degrees.
+int slivers(const FaceMesh& fm) {
+  int n = 0;
+  for (const auto& t : fm.tris) n += min_angle_deg(fm.s[t[0]].p, fm.s[t[1]].p, fm.s[t[2]].p) < kSliverDeg;
+  return n;
+}
+
 // The inside of a face from its boundary `given` (mesher uv): the front's
 // strategies, then the optimiser. Throws the kernel's Error.
 void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, FaceResult& r) {
@@ -119,6 +136,11 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
   std::vector<Attempt> attempts = {{&steady, false}};
   if (curled) attempts.push_back({&raw, false});
   attempts.push_back({&steady, true});
+  SplitBounds bounds;
+  bounds.deviation = o.deviation;
+  bounds.max_turn = face < static_cast<int>(o.max_turn.size()) ? o.max_turn[face] : 0.0;
+  bounds.h_floor = o.h_min;
+  bool optimised = false;
   FrontResult fr;
   auto fill = [&](bool lenient, int max_edges) {
     return fill_front(r.mesh, fs, fr.open_edges, EarTest::kFacing, max_edges) ||
@@ -147,6 +169,24 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
         fr.ok = true;
         r.filled = true;
       }
+      // A few edges left that no facing ear closes (a leftover loop the
+      // front left turned in space): closed by any ears valid in uv and
+      // optimised, kept when no triangle is then turned against the surface
+      // at its centroid (the quality report's inverted triangle) and none is
+      // under 12 degrees (else the other strategies may do better). What the
+      // lenient run does last, without every other strategy run first.
+      if (!fr.ok && !a.lenient && static_cast<int>(fr.open_edges.size()) <= kSmallLeftover) {
+        FaceMesh untangled = r.mesh;
+        if (fill_front(untangled, fs, fr.open_edges, EarTest::kAny, kSmallLeftover)) {
+          optimise(untangled, fs, o.optimise_passes, bounds);
+          if (!any_turned(untangled, fs) && slivers(untangled) == 0) {
+            r.mesh = std::move(untangled);
+            fr.ok = true;
+            r.filled = true;
+            optimised = true;
+          }
+        }
+      }
       // Before the strategies that add points freely: a strip too narrow
       // for any point inside it is closed across.
       if (!fr.ok && !a.lenient && strategy == 1 && fill_narrow(r.mesh, fs, fr.open_edges)) {
@@ -166,11 +206,7 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
   if (!fr.ok) {
     r.reason = fr.reason;
   } else {
-    SplitBounds bounds;
-    bounds.deviation = o.deviation;
-    bounds.max_turn = face < static_cast<int>(o.max_turn.size()) ? o.max_turn[face] : 0.0;
-    bounds.h_floor = o.h_min;
-    optimise(r.mesh, fs, o.optimise_passes, bounds);
+    if (!optimised) optimise(r.mesh, fs, o.optimise_passes, bounds);
     r.seconds_optimise = clock.lap();
     for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
     r.ok = true;

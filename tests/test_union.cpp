@@ -300,13 +300,19 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // meet the fuselage steeply: no face keeps all its triangles, none is
   // turned over. The horizontal tail's upper skin stalls across a band at
   // its trailing edge (test_front): meshed from the band's edge, it no
-  // longer ends in a fan of 7 slivers there, and 11 of the 157,000 triangles
+  // longer ends in a fan of 7 slivers there, and 10 of the 157,000 triangles
   // are avoidably under 12 degrees (strakes, nose and the fin's trailing edge).
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 12);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 11);
+  // The front leaves a few small loops turned in space on the fin's and the
+  // strakes' rounded edges; closed and optimised at once, none is turned
+  // or under 12 degrees, and no face needs the lenient run (10 did, after
+  // every other strategy: 637,000 front steps, 4 per triangle).
+  CHECK(j["mesher"]["faces_lenient"] == 0);
+  CHECK(j["mesher"]["front_steps_per_triangle"].get<double>() < 2.0);
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
