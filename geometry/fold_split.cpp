@@ -496,8 +496,19 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
         }
         changes.push_back(std::move(c));
       }
-      const BRepCheck_Analyzer check(all_pieces, true, true);
-      auto good = [&](const TopoDS_Face& piece) { return !piece.IsNull() && check.IsValid(piece); };
+      // Topology first (cheap), then the geometry (curves on their surfaces)
+      // of the pieces that pass it: on a piece of no area, where the surface
+      // collapses, the second alone takes most of a second, and the first
+      // fails it anyway.
+      const BRepCheck_Analyzer topology(all_pieces, false, true);
+      TopoDS_Compound sound;
+      cb.MakeCompound(sound);
+      for (TopExp_Explorer p(all_pieces, TopAbs_FACE); p.More(); p.Next())
+        if (topology.IsValid(p.Current())) cb.Add(sound, p.Current());
+      const BRepCheck_Analyzer check(sound, true, true);
+      auto good = [&](const TopoDS_Face& piece) {
+        return !piece.IsNull() && topology.IsValid(piece) && check.IsValid(piece);
+      };
       std::vector<std::pair<TopoDS_Face, std::vector<TopoDS_Face>>> replaced;
       bool valid = true;
       for (Change& c : changes) {
