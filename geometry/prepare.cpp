@@ -16,7 +16,6 @@
 // face.
 #include "geometry/prepare.h"
 #include "geometry/stopwatch.h"
-#include <ctime>
 
 #include <BOPAlgo_Alerts.hxx>
 #include <BOPAlgo_Builder.hxx>
@@ -1226,9 +1225,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   }
   // Folds narrower than half the default smallest element become curves.
   int folds = 0;
-  Stopwatch dbg; const std::clock_t c0 = std::clock();
   out.shape = split_folds(result, kFoldBand * diagonal, follow, folds);
-  if (getenv("SM_DBG")) fprintf(stderr, "FIN split_folds wall %.3f cpu %.3f\n", dbg.lap(), double(std::clock() - c0) / CLOCKS_PER_SEC);
   // Strips too narrow for sewing to keep their corners (some split off at a
   // fold just now) become curves.
   out.shape = collapse_strips(out.shape, 2 * tol, follow, info.strip_faces_collapsed);

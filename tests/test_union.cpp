@@ -301,7 +301,7 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // turned over. The horizontal tail's upper skin stalls across a band at
   // its trailing edge (test_front): meshed from the band's edge, it no
   // longer ends in a fan of 7 slivers there, and 10 of the 157,000 triangles
-  // are avoidably under 12 degrees (strakes, nose and the fin's trailing edge).
+  // are avoidably under 12 degrees (strakes, nose and the tail's root).
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
