@@ -96,4 +96,13 @@ class Geometry {
   virtual Vec3 point_xyz(int point) const = 0;
 };
 
+// uv shifted by whole periods of face f to lie nearest `near`.
+inline Vec2 unwrap_uv(const Geometry& g, int f, Vec2 uv, const Vec2& near) {
+  for (int axis = 0; axis < 2; ++axis) {
+    const double period = axis == 0 ? g.face_wrap_u(f) : g.face_wrap_v(f);
+    if (period > 0) uv[axis] += period * std::round((near[axis] - uv[axis]) / period);
+  }
+  return uv;
+}
+
 }  // namespace sizemesh

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "mesher/junction_slivers.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
 #include "mesher/self_intersection.h"
@@ -28,15 +29,6 @@ uint64_t edge_key(int a, int b) {
 
 // The edge from a to b, told apart from the edge from b to a.
 uint64_t directed_key(int a, int b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); }
-
-// uv shifted by whole periods of face f to lie nearest `near`.
-Vec2 unwrap(const Geometry& g, int f, Vec2 uv, const Vec2& near) {
-  for (int axis = 0; axis < 2; ++axis) {
-    const double period = axis == 0 ? g.face_wrap_u(f) : g.face_wrap_v(f);
-    if (period > 0) uv[axis] += period * std::round((near[axis] - uv[axis]) / period);
-  }
-  return uv;
-}
 
 // A triangle's corners in face f's uv, shifted by whole periods into the
 // period that holds its centroid: a node on the seam takes the side of the
@@ -227,8 +219,8 @@ void resample(Chain& c, const SurfaceMesh& s, const Topology& topo, const Geomet
   for (size_t i = 0; i < n; ++i) {
     const Vec2 *a = topo.uv(c.nodes[i], c.fa), *b = topo.uv(c.nodes[i], c.fb);
     if (!a || !b) return;
-    ua[i] = i ? unwrap(g, c.fa, *a, ua[i - 1]) : *a;
-    ub[i] = i ? unwrap(g, c.fb, *b, ub[i - 1]) : *b;
+    ua[i] = i ? unwrap_uv(g, c.fa, *a, ua[i - 1]) : *a;
+    ub[i] = i ? unwrap_uv(g, c.fb, *b, ub[i - 1]) : *b;
     // The junction is meshed to the finer side: the size map of each
     // component saw only its own faces.
     const double size = std::min(h.at(c.fa, ua[i], hint_a), h.at(c.fb, ub[i], hint_b));
@@ -470,7 +462,7 @@ std::vector<Region> face_regions(const SurfaceMesh& s, const Geometry& g, int f,
         const size_t k = ch.x.size();
         for (size_t j = 0; j < k; ++j) {
           const size_t q = forward ? j : k - 1 - j;
-          const Vec2 at = unwrap(g, f, f == ch.fa ? ch.uva[q] : ch.uvb[q], prev);
+          const Vec2 at = unwrap_uv(g, f, f == ch.fa ? ch.uva[q] : ch.uvb[q], prev);
           add(ch.id[q], at, ch.x[q]);
           prev = at;
         }
@@ -656,7 +648,7 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
         s.xyz[a] = x;
         for (int t : node_tris[a]) {
           const int k = corner_of(t, a);
-          s.tri_uv[t][k] = unwrap(g, s.tri_face[t], uv[s.tri_face[t]], s.tri_uv[t][k]);
+          s.tri_uv[t][k] = unwrap_uv(g, s.tri_face[t], uv[s.tri_face[t]], s.tri_uv[t][k]);
         }
         changed = true;
         continue;
@@ -735,7 +727,7 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
         const Vec2 line = (1 - at) * uc + at * ua;
         Vec2 guess = line;
         projected = g.project_to_face(f, sp.x[i], guess);
-        w[j].push_back(unwrap(g, f, guess, line));
+        w[j].push_back(unwrap_uv(g, f, guess, line));
       }
       w[j].push_back(ua);
     }
@@ -1099,6 +1091,9 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     out.faces_kept = static_cast<int>(kept.size());
     s = std::move(m);
     u.junction = std::move(ends);
+    const JunctionSliverResult thin = remove_junction_slivers(s, g, h, u.junction, hits.pairs);
+    out.thin_collapsed = thin.collapsed;
+    out.thin_flipped = thin.flipped;
     measure_junction(s, g, u, 1e4 * tol);  // 1e-9 of the diagonal, as unite_meshes()
     return out;
   }

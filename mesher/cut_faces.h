@@ -20,8 +20,10 @@
 //         turn over (and the old ones there did not), the old triangles
 //         around them are held and the rest of the face meshed again around
 //         them, the junctions through them keeping their nodes; in the last
-//         two rounds such a face keeps all its triangles. s is left as it
-//         was when nothing could be done.
+//         two rounds such a face keeps all its triangles. The thin
+//         triangles left along the junctions are then removed where a local
+//         collapse or flip can (junction_slivers.h). s is left as it was
+//         when nothing could be done.
 // Work:   the cut faces' meshing, and one self-intersection check per round
 //         (at most five rounds).
 #pragma once
@@ -37,6 +39,8 @@ struct CutFacesResult {
   int faces_remeshed = 0;  // cut faces meshed again from their new boundary
   int faces_kept = 0;      // cut faces left with the union's triangles
   int junction_nodes = 0;  // nodes placed along the junctions
+  int thin_collapsed = 0;  // edges collapsed to remove thin triangles along them (junction_slivers.h)
+  int thin_flipped = 0;    // edges flipped to the same end
 };
 
 CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFunction& h, const MeshOptions& o,

@@ -148,7 +148,9 @@ nlohmann::json report_json(const RunReport& r) {
                        {"junction_nodes_unprojected", r.mesh_union.junction_nodes_unprojected},
                        {"faces_remeshed", r.cut_faces.faces_remeshed},
                        {"faces_kept", r.cut_faces.faces_kept},
-                       {"junction_nodes_placed", r.cut_faces.junction_nodes}};
+                       {"junction_nodes_placed", r.cut_faces.junction_nodes},
+                       {"thin_edges_collapsed", r.cut_faces.thin_collapsed},
+                       {"thin_edges_flipped", r.cut_faces.thin_flipped}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},

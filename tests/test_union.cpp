@@ -265,8 +265,9 @@ TEST_CASE("the 777 one-piece's tail, cut by the fuselage across the seam its ski
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
   // A curve's segment at a junction corner keeps its component's coarse
-  // spacing unless spaced again to the junction's size (5 avoidable).
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 4);
+  // spacing unless spaced again to the junction's size (5 avoidable); of
+  // the 3 left after that, a short edge's collapse takes 2 (junction_slivers.h).
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 2);
 }
 
 TEST_CASE("a union of meshes that would lose volume is refused, and a piece wholly inside the rest is absorbed", "[models]") {
@@ -300,13 +301,17 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // meet the fuselage steeply: no face keeps all its triangles, none is
   // turned over. The horizontal tail's upper skin stalls across a band at
   // its trailing edge (test_front): meshed from the band's edge, it no
-  // longer ends in a fan of 7 slivers there, and 10 of the 157,000 triangles
-  // are avoidably under 12 degrees (strakes, nose and the tail's root).
+  // longer ends in a fan of 7 slivers there. Where the fuselage meets the
+  // strakes' edges at 11 degrees, the nose's curves at 5 and the tail's
+  // root beside a B-rep point, the cut faces' regions are wedges and strips
+  // narrower than the elements (10 avoidably thin triangles); their short
+  // edges are collapsed and their caps flipped afterwards: 1 of the 157,000.
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
+  CHECK(j["mesh_union"]["thin_edges_collapsed"] > 0);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 11);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 2);
   // The front leaves a few small loops turned in space on the fin's and the
   // strakes' rounded edges; closed and optimised at once, none is turned
   // or under 12 degrees, and no face needs the lenient run (10 did, after
@@ -409,8 +414,10 @@ TEST_CASE("Pegasus's wing and tail halves, each closed by its own root cap on th
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
   // 318 with the halves apart, 122 with the ventral fin's leading-edge
-  // strip (0.0015 wide) filled by the front with points of its own.
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 8);
+  // strip (0.0015 wide) filled by the front with points of its own, 5 with
+  // the curves at junction corners spaced again, 2 with the thin triangles
+  // along the junctions collapsed or flipped afterwards.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
 }
 
 TEST_CASE("an open sheet inside a body is left out: the box alone, closed, exit 0") {
@@ -507,7 +514,10 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   // too: the front placed the tip's fan from a zero metric, and triangles
   // there turned over (test_mesher, the quadratic cone).
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 12);
+  // The wing's leading edge lies on the fuselage's flat top within 0.001 to
+  // 0.04 ft (h 0.11) over ten elements: the strip of lower skin between it
+  // and the junction is merged away where it is that thin (10 avoidable before).
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
   // Junction nodes no projection reaches are counted apart: the largest gap
   // is that of the nodes on their surfaces, a number.
   const auto& u = j["mesh_union"];
@@ -528,7 +538,8 @@ TEST_CASE("the manta united at mesh level: faces meshed again on either side of 
   CHECK(j["preparation"]["not_united"].empty());
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 20);
+  // 19 before the thin triangles along the junctions were collapsed or flipped.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 9);
 }
 
 TEST_CASE("a child process started after the parent used oneTBB works on every core and ends", "[union]") {

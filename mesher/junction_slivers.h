@@ -1,0 +1,44 @@
+// Thin triangles left along a union of meshes' junction, removed by local
+// operations on the final mesh. Where the junction runs within a sliver's
+// width of a CAD curve (a wing's leading edge lying along a fuselage's flat
+// top) or crosses one at a grazing angle, the cut faces hold strips narrower
+// than the elements, and no front fills them without thin triangles. Each
+// such triangle is replaced by the local operation that leaves its
+// neighbourhood best:
+//  - an edge collapsed: a node merged into a neighbour on every face it is
+//    on (an inner node into any neighbour, a curve's or junction's node into
+//    the next one along it or into a corner there), or two nodes of different
+//    curves or junctions closer than tan(12 deg) of the wanted size merged
+//    (the strip between them vanishes: a corner of three faces there);
+//  - the edge opposite its largest angle flipped, inside one face.
+// An operation is taken only when its triangles have fewer under 12 degrees
+// and a larger smallest angle than the ones it replaces, none turned over or
+// leaning more than 30 degrees off its surface; B-rep points never move.
+//
+// Input:  s the mesh after the cut faces were meshed again, junction its
+//         junction edges, crossing_pairs its count of crossing triangle pairs
+// Output: s with its thin junction triangles removed where that was possible,
+//         junction renumbered with it; s is left as it was when the result
+//         would have more crossing pairs.
+// Work:   a few operations per thin triangle, each over its star; one
+//         self-intersection count when anything changed.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "geometry/geometry.h"
+#include "mesher/surface_mesh.h"
+#include "sizing/size_function.h"
+
+namespace sizemesh {
+
+struct JunctionSliverResult {
+  int collapsed = 0;  // edges collapsed
+  int flipped = 0;    // edges flipped
+};
+
+JunctionSliverResult remove_junction_slivers(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
+                                             std::vector<std::array<int, 2>>& junction, long long crossing_pairs);
+
+}  // namespace sizemesh
