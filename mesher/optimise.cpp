@@ -12,6 +12,7 @@ namespace sizemesh {
 namespace {
 
 constexpr double kCosMin = 0.5;    // triangle normal against the surface normal
+constexpr double kCosAgree = 0.90630778703665;  // cos 25 deg: corner normals that agree
 constexpr double kSwapBelow = 0.8;  // only triangles worse than this look for a better diagonal
 
 // Shape in space of (a, b, c) at the given corner samples; -1 when the triangle
@@ -26,9 +27,16 @@ double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample
   const double lt = nt.norm();
   if (!(lt > 0)) return -1;
   const SurfaceSample* corners[3] = {&sa, &sb, &sc};
-  for (const SurfaceSample* s : corners)  // normals are zero on poles
-    if (s->n.squaredNorm() > 0 && nt.dot(s->n) < kCosMin * lt) return -1;
-  if (fs.turned_at_centroid(ua, ub, uc, nt)) return -1;
+  bool agree = true;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& n = corners[k]->n;  // zero on poles
+    if (n.squaredNorm() > 0 && nt.dot(n) < kCosMin * lt) return -1;
+    agree = agree && n.squaredNorm() > 0 && n.dot(corners[(k + 1) % 3]->n) > kCosAgree;
+  }
+  // Where the corners' normals agree within 25 degrees, the surface's at the
+  // centroid lies among them (the elements are small against the curvature):
+  // within 85 degrees of the triangle's, not turned. Else it is evaluated.
+  if (!agree && fs.turned_at_centroid(ua, ub, uc, nt)) return -1;
   return triangle_quality(sa.p, sb.p, sc.p);
 }
 
