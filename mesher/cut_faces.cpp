@@ -1094,6 +1094,7 @@ CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFun
     const JunctionSliverResult thin = remove_junction_slivers(s, g, h, u.junction, hits.pairs);
     out.thin_collapsed = thin.collapsed;
     out.thin_flipped = thin.flipped;
+    out.thin_pinched = thin.pinched;
     measure_junction(s, g, u, 1e4 * tol);  // 1e-9 of the diagonal, as unite_meshes()
     return out;
   }

@@ -41,6 +41,7 @@ struct CutFacesResult {
   int junction_nodes = 0;  // nodes placed along the junctions
   int thin_collapsed = 0;  // edges collapsed to remove thin triangles along them (junction_slivers.h)
   int thin_flipped = 0;    // edges flipped to the same end
+  int thin_pinched = 0;    // nodes put on the face boundary beside them to the same end
 };
 
 CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFunction& h, const MeshOptions& o,

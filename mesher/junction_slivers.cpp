@@ -59,7 +59,7 @@ class Cleaner {
   // it made are appended to `made`. False when none improves on t's
   // neighbourhood.
   bool improve(int t, std::vector<int>& made, JunctionSliverResult& count) {
-    enum Kind { kNone, kCollapse, kFlip };
+    enum Kind { kNone, kCollapse, kFlip, kPinch };
     Kind best = kNone;
     Shape best_shape;
     int best_from = -1, best_to = -1;
@@ -86,17 +86,26 @@ class Cleaner {
       Shape before, after;
       if (flip(t, false, before, after)) consider(kFlip, before, after, t, -1);
     }
+    {
+      Shape before, after;
+      if (pinch(t, false, before, after)) consider(kPinch, before, after, t, -1);
+    }
     if (best == kNone) return false;
     Shape before, after;
     if (best == kCollapse) {
       collapse(best_from, best_to, HUGE_VAL, true, before, after);
       for (int x : alive(best_to)) made.push_back(x);
       ++count.collapsed;
-    } else {
+    } else if (best == kFlip) {
       flip(best_from, true, before, after);
       made.push_back(best_from);
       made.push_back(flipped_other_);
       ++count.flipped;
+    } else {
+      pinch(best_from, true, before, after);
+      made.push_back(flipped_other_);
+      made.push_back(static_cast<int>(s_.tris.size()) - 1);
+      ++count.pinched;
     }
     return true;
   }
@@ -307,6 +316,68 @@ class Cleaner {
     };
     drop(p, t2);
     drop(q, t);
+    flipped_other_ = t2;
+    return true;
+  }
+
+  // Thin triangle t = (r, p, q) with its largest angle (over 90 degrees)
+  // at r, a node of a curve or junction, where the triangle across (p, q) is
+  // of another face: r lies within a sliver's height of that face boundary
+  // (a junction touching a curve), and is put on it. t goes, the triangle
+  // across is split at r in two.
+  bool pinch(int t, bool apply, Shape& before, Shape& after) {
+    const auto tr = s_.tris[t];
+    const auto ang = corner_angles_deg(s_.xyz[tr[0]], s_.xyz[tr[1]], s_.xyz[tr[2]]);
+    const int kr = static_cast<int>(std::max_element(ang.begin(), ang.end()) - ang.begin());
+    const int r = tr[kr], p = tr[(kr + 1) % 3], q = tr[(kr + 2) % 3];
+    if (!(ang[kr] > 90) || faces(r).size() < 2) return false;
+    int t2 = -1, across = 0;
+    for (int u : node_tris_[p])
+      if (u != t && !dead_[u] && corner(u, q) < 3) t2 = u, ++across;
+    if (across != 1 || s_.tri_face[t2] == s_.tri_face[t]) return false;
+    const int f2 = s_.tri_face[t2];
+    int o = -1;
+    for (int n : s_.tris[t2])
+      if (n != p && n != q) o = n;
+    const std::vector<int> nr = neighbours(r);
+    if (o < 0 || o == r || std::binary_search(nr.begin(), nr.end(), o)) return false;
+    const Vec2 up = s_.tri_uv[t2][corner(t2, p)], uq = s_.tri_uv[t2][corner(t2, q)], uo = s_.tri_uv[t2][corner(t2, o)];
+    Vec2 ur;
+    if (!uv_in(r, f2, 0.5 * (up + uq), ur)) return false;
+    before.add(s_.xyz[r], s_.xyz[p], s_.xyz[q]);
+    before.add(s_.xyz[q], s_.xyz[p], s_.xyz[o]);
+    const double limit = std::max(0.0, std::min({kLeanCos, lean(t2)}));
+    const std::array<Vec3, 3> x1{s_.xyz[q], s_.xyz[r], s_.xyz[o]}, x2{s_.xyz[r], s_.xyz[p], s_.xyz[o]};
+    const std::array<Vec2, 3> w1{uq, ur, uo}, w2{ur, up, uo};
+    if (!(lean(f2, x1, w1) > limit) || !(lean(f2, x2, w2) > limit)) return false;
+    // Across (q, r) and (r, p): t's neighbours; across (p, o), (o, q): t2's.
+    auto face_across = [&](int u, int v) {
+      if ((u == r && v == o) || (u == o && v == r)) return f2;
+      for (int x : node_tris_[u])
+        if (x != t && x != t2 && !dead_[x] && corner(x, v) < 3) return s_.tri_face[x];
+      return -1;
+    };
+    if (thin_ear(f2, {q, r, o}, face_across) || thin_ear(f2, {r, p, o}, face_across)) return false;
+    after.add(x1[0], x1[1], x1[2]);
+    after.add(x2[0], x2[1], x2[2]);
+    if (!apply) return true;
+    dead_[t] = 1;
+    s_.tris[t2] = {q, r, o};
+    s_.tri_uv[t2] = w1;
+    s_.tris.push_back({r, p, o});
+    s_.tri_uv.push_back(w2);
+    s_.tri_face.push_back(f2);
+    dead_.push_back(0);
+    const int t3 = static_cast<int>(s_.tris.size()) - 1;
+    node_tris_[r].push_back(t2);
+    node_tris_[r].push_back(t3);
+    node_tris_[p].push_back(t3);
+    node_tris_[o].push_back(t3);
+    auto drop = [&](int n, int x) {
+      auto& v = node_tris_[n];
+      v.erase(std::remove(v.begin(), v.end(), x), v.end());
+    };
+    drop(p, t2);
     flipped_other_ = t2;
     return true;
   }

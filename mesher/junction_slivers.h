@@ -10,7 +10,10 @@
 //    the next one along it or into a corner there), or two nodes of different
 //    curves or junctions closer than tan(12 deg) of the wanted size merged
 //    (the strip between them vanishes: a corner of three faces there);
-//  - the edge opposite its largest angle flipped, inside one face.
+//  - the edge opposite its largest angle flipped, inside one face, or where
+//    that edge is a face boundary, the node at that angle put on it (the
+//    triangle across it split there: a junction that touches a curve
+//    meets it).
 // An operation is taken only when its triangles have fewer under 12 degrees
 // and a larger smallest angle than the ones it replaces, none turned over or
 // leaning more than 30 degrees off its surface; B-rep points never move.
@@ -36,6 +39,7 @@ namespace sizemesh {
 struct JunctionSliverResult {
   int collapsed = 0;  // edges collapsed
   int flipped = 0;    // edges flipped
+  int pinched = 0;    // nodes put on a face boundary their thin triangle lay along
 };
 
 JunctionSliverResult remove_junction_slivers(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,

@@ -150,7 +150,8 @@ nlohmann::json report_json(const RunReport& r) {
                        {"faces_kept", r.cut_faces.faces_kept},
                        {"junction_nodes_placed", r.cut_faces.junction_nodes},
                        {"thin_edges_collapsed", r.cut_faces.thin_collapsed},
-                       {"thin_edges_flipped", r.cut_faces.thin_flipped}};
+                       {"thin_edges_flipped", r.cut_faces.thin_flipped},
+                       {"thin_nodes_pinched", r.cut_faces.thin_pinched}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},

@@ -215,8 +215,10 @@ TEST_CASE("a transport's twelve components: a B-rep union on course to miss its 
   // again too, or each split edge leaves a fan of 6-degree slivers there
   // (152 on that face alone, 217 avoidable in all). A curve node the cut
   // leaves a stub away from a junction corner is moved along its curve (9
-  // more). What remains lies on faces the junction crosses: 2.
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
+  // more). The 2 left on faces the junction crosses (three junction nodes
+  // around a corner, a 0.024 edge) go with the thin triangles' removal
+  // afterwards (junction_slivers.h).
+  CHECK(j["mesh"]["avoidable_below_12deg"] == 0);
 }
 
 TEST_CASE("a component whose skin folds through itself inside another is united at mesh level", "[models]") {
@@ -266,7 +268,7 @@ TEST_CASE("the 777 one-piece's tail, cut by the fuselage across the seam its ski
   CHECK(j["mesh"]["inverted_triangles"] == 0);
   // A curve's segment at a junction corner keeps its component's coarse
   // spacing unless spaced again to the junction's size (5 avoidable); of
-  // the 3 left after that, a short edge's collapse takes 2 (junction_slivers.h).
+  // the 3 left after that, the thin triangles' removal takes 2 (junction_slivers.h).
   CHECK(j["mesh"]["avoidable_below_12deg"] <= 2);
 }
 
@@ -305,13 +307,16 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // strakes' edges at 11 degrees, the nose's curves at 5 and the tail's
   // root beside a B-rep point, the cut faces' regions are wedges and strips
   // narrower than the elements (10 avoidably thin triangles); their short
-  // edges are collapsed and their caps flipped afterwards: 1 of the 157,000.
+  // edges are collapsed, their caps flipped or put on the curve beside them
+  // afterwards: 3 of the 157,000 are left, where the strakes' junction runs
+  // along the wing's leading-edge curve (a collapse there turns the strake's
+  // triangles over).
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh_union"]["thin_edges_collapsed"] > 0);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 2);
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
   // The front leaves a few small loops turned in space on the fin's and the
   // strakes' rounded edges; closed and optimised at once, none is turned
   // or under 12 degrees, and no face needs the lenient run (10 did, after
@@ -415,9 +420,9 @@ TEST_CASE("Pegasus's wing and tail halves, each closed by its own root cap on th
   CHECK(j["mesh"]["inverted_triangles"] == 0);
   // 318 with the halves apart, 122 with the ventral fin's leading-edge
   // strip (0.0015 wide) filled by the front with points of its own, 5 with
-  // the curves at junction corners spaced again, 2 with the thin triangles
-  // along the junctions collapsed or flipped afterwards.
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
+  // the curves at junction corners spaced again, 1 with the thin triangles
+  // along the junctions removed afterwards.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 2);
 }
 
 TEST_CASE("an open sheet inside a body is left out: the box alone, closed, exit 0") {
@@ -516,8 +521,10 @@ TEST_CASE("the truss-braced wing united at mesh level is one closed surface: cap
   CHECK(j["mesh"]["inverted_triangles"] == 0);
   // The wing's leading edge lies on the fuselage's flat top within 0.001 to
   // 0.04 ft (h 0.11) over ten elements: the strip of lower skin between it
-  // and the junction is merged away where it is that thin (10 avoidable before).
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
+  // and the junction is merged away where it is that thin, and the junction
+  // nodes that touch the curve are put on it (10 avoidable before).
+  CHECK(j["mesh_union"]["thin_nodes_pinched"] > 0);
+  CHECK(j["mesh"]["avoidable_below_12deg"] == 0);
   // Junction nodes no projection reaches are counted apart: the largest gap
   // is that of the nodes on their surfaces, a number.
   const auto& u = j["mesh_union"];
@@ -538,8 +545,8 @@ TEST_CASE("the manta united at mesh level: faces meshed again on either side of 
   CHECK(j["preparation"]["not_united"].empty());
   check_one_closed_surface(j["mesh"]);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
-  // 19 before the thin triangles along the junctions were collapsed or flipped.
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 9);
+  // 19 before the thin triangles along the junctions were collapsed, flipped or pinched.
+  CHECK(j["mesh"]["avoidable_below_12deg"] <= 6);
 }
 
 TEST_CASE("a child process started after the parent used oneTBB works on every core and ends", "[union]") {
