@@ -13,7 +13,7 @@ namespace sizemesh {
 
 namespace {
 
-constexpr double kLeanCos = 0.86602540378443865;  // cos 30 deg: a triangle's largest lean off its surface
+constexpr double kLeanCos = 0.70710678118654752;  // cos 45 deg: a triangle's largest lean off its surface
 
 // The smallest angle of a set of triangles, and how many are under 12 degrees.
 struct Shape {

@@ -15,8 +15,11 @@
 //    triangle across it split there: a junction that touches a curve
 //    meets it).
 // An operation is taken only when its triangles have fewer under 12 degrees
-// and a larger smallest angle than the ones it replaces, none turned over or
-// leaning more than 30 degrees off its surface; B-rep points never move.
+// than the ones it replaces (their smallest angle not under a quarter of
+// theirs: a strip goes in several steps), or as many and a larger smallest
+// angle; none turned over or leaning more than 45 degrees off its surface
+// (the normal at its centroid), none a thin ear of its face's boundary at a
+// corner that is not its smallest angle. B-rep points never move.
 //
 // Input:  s the mesh after the cut faces were meshed again, junction its
 //         junction edges, crossing_pairs its count of crossing triangle pairs
