@@ -565,6 +565,10 @@ bool nearest_on_curve(const Geometry& g, int c, const Vec3& x, double& t) {
 //    of a component's own, coarser size map, while the junction and the
 //    region beside it take the finer side's, growing away from it. Not
 //    where the junction leaves the corner within 15 degrees of the curve.
+//  - Any other curve segment between two faces the junction cuts is split
+//    so too where it is longer than 1.5 times the size wanted once the
+//    junction's sizes grow into those faces (a strake's junction running
+//    beside the fuselage's side curve).
 // Triangles at a moved node keep their corners' uv in step; the two beside a
 // split segment become fans. True when anything changed.
 bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
@@ -708,6 +712,70 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
       split_tris.insert(beside.begin(), beside.end());
       splits.push_back(std::move(sp));
     }
+  }
+  // Curve segments inside the faces the junction cuts, longer than 1.5
+  // times the size wanted along them once the junction's sizes grow into
+  // those faces (Eq. 12 from every junction node, as the faces are meshed
+  // again): a segment keeps its component's coarser spacing, and the
+  // region between it and a finer junction running beside it is a row of
+  // caps. Split on the curve by the integral of 1/h, as above.
+  std::set<int> cut;
+  for (const auto& [a, b] : junction)
+    for (int t : edge_tris[edge_key(a, b)]) cut.insert(s.tri_face[t]);
+  JunctionGradedSize graded(g, h, size_slope);
+  for (size_t n = 0; n < s.xyz.size(); ++n) {
+    if (!on_junction[n]) continue;
+    double size = HUGE_VAL;
+    for (int t : node_tris[n]) {
+      int hint = -1;
+      size = std::min(size, h.at(s.tri_face[t], s.tri_uv[t][corner_of(t, static_cast<int>(n))], hint));
+    }
+    for (int f : node_faces[n]) graded.add(f, s.xyz[n], size);
+  }
+  graded.finish();
+  for (const auto& [key, beside] : edge_tris) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    if (s.node_dim[a] > 1 || s.node_dim[b] > 1 || on_junction[a] || on_junction[b] || beside.size() != 2) continue;
+    if (s.node_dim[a] == 0 && s.node_dim[b] == 0) continue;
+    if (s.node_dim[a] == 1 && s.node_dim[b] == 1 && s.node_entity[a] != s.node_entity[b]) continue;
+    if (!cut.count(s.tri_face[beside[0]]) || !cut.count(s.tri_face[beside[1]])) continue;
+    if (split_tris.count(beside[0]) || split_tris.count(beside[1])) continue;
+    const int curve = s.node_dim[a] == 1 ? s.node_entity[a] : s.node_entity[b];
+    const double length = (s.xyz[b] - s.xyz[a]).norm();
+    // Sizes along the segment, the finer of its two faces'.
+    constexpr int kSteps = 16;
+    std::array<double, kSteps + 1> size{};
+    bool sized = true;
+    for (int i = 0; i <= kSteps && sized; ++i) {
+      size[i] = HUGE_VAL;
+      for (int t : beside) {
+        const Vec2 ua = s.tri_uv[t][corner_of(t, a)], ub = s.tri_uv[t][corner_of(t, b)];
+        int hint = -1;
+        size[i] = std::min(size[i], graded.at(s.tri_face[t], ua + (ub - ua) * (double(i) / kSteps), hint));
+      }
+      sized = size[i] > 0 && std::isfinite(size[i]);
+    }
+    if (!sized || !(length > 1.5 * size[kSteps / 2])) continue;
+    std::array<double, kSteps + 1> integral{};
+    for (int i = 1; i <= kSteps; ++i)
+      integral[i] = integral[i - 1] + length / kSteps * 0.5 * (1 / size[i - 1] + 1 / size[i]);
+    const int pieces = std::min(32, static_cast<int>(std::lround(integral.back())));
+    if (pieces < 2) continue;
+    Split sp{a, b, curve, {}};
+    int step = 0;
+    for (int i = 1; i < pieces; ++i) {
+      const double at = integral.back() * i / pieces;
+      while (step + 1 < kSteps && integral[step + 1] < at) ++step;
+      const double span = integral[step + 1] - integral[step];
+      const double d = length * (step + (span > 0 ? (at - integral[step]) / span : 0.0)) / kSteps;
+      Vec3 x;
+      const Vec3 target = s.xyz[a] + (s.xyz[b] - s.xyz[a]) * (d / length);
+      if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * length)) break;
+      sp.x.push_back(x);
+    }
+    if (static_cast<int>(sp.x.size()) != pieces - 1) continue;
+    split_tris.insert(beside.begin(), beside.end());
+    splits.push_back(std::move(sp));
   }
   // Each split: the new nodes, and the two triangles beside the segment
   // replaced by fans to their third corner.

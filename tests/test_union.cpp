@@ -308,15 +308,17 @@ TEST_CASE("a union of meshes that would lose volume is refused, and a piece whol
   // root beside a B-rep point, the cut faces' regions are wedges and strips
   // narrower than the elements (10 avoidably thin triangles); their short
   // edges are collapsed, their caps flipped or put on the curve beside them
-  // afterwards: 3 of the 157,000 are left, where the strakes' junction runs
-  // along the wing's leading-edge curve (a collapse there turns the strake's
-  // triangles over).
+  // afterwards. Where the strakes' junction runs beside the fuselage's side
+  // curve (curves 2 and 7), that curve kept the fuselage's own spacing, six
+  // times the junction's: its segments there are split to the junction's
+  // sizes grown into the face, or 3 caps stay (a collapse turns the strakes'
+  // triangles over). None of the 157,000 is avoidably under 12 degrees.
   CHECK(j["mesh_union"]["gap_nodes_closed"] > 1000);
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   CHECK(j["mesh_union"]["faces_remeshed"] == 39);
   CHECK(j["mesh_union"]["thin_edges_collapsed"] > 0);
   CHECK(j["mesh"]["inverted_triangles"] == 0);
-  CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
+  CHECK(j["mesh"]["avoidable_below_12deg"] == 0);
   // The front leaves a few small loops turned in space on the fin's and the
   // strakes' rounded edges; closed and optimised at once, none is turned
   // or under 12 degrees, and no face needs the lenient run (10 did, after
