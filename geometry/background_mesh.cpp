@@ -240,7 +240,7 @@ BackgroundMesh build_background_mesh(const Model& model, const BackgroundOptions
     throw Error("tessellation deflection and angle must be positive");
   const double diag = model.info().diagonal();
   try {
-    const double angle = options.angle_deg * M_PI / 180.0;
+    const double angle = options.angle_deg * kPi / 180.0;
     const double far = model.info().domain.size;
     if (far > 0) {
       // The far field, many body diagonals across, at a deflection relative

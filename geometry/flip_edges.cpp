@@ -13,7 +13,6 @@
 namespace sizemesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // How far past pi the opposite angles must sum for a flip (radians, about 17
 // degrees): only clearly obtuse pairs are flipped. Pairs close to cocircular
 // (the two halves of a tessellated rectangle) are left as built, and the

@@ -88,7 +88,7 @@ TopoDS_Shape farfield_solid(FlowDomainOptions::FarField kind, const Vec3& c, dou
     Vec3 d = Vec3::Zero();
     d[axis] = side;
     const gp_Ax2 frame(to_pnt(c), gp_Dir(d.x(), d.y(), d.z()));
-    return BRepPrimAPI_MakeSphere(frame, r, 0.0, M_PI / 2).Solid();  // from the plane up to the pole
+    return BRepPrimAPI_MakeSphere(frame, r, 0.0, kPi / 2).Solid();  // from the plane up to the pole
   }
   Vec3 lo = c - Vec3::Constant(r), hi = c + Vec3::Constant(r);
   if (axis >= 0) (side > 0 ? lo : hi)[axis] = c[axis];

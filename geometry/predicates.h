@@ -31,7 +31,7 @@ inline std::array<double, 3> corner_angles_deg(const Vec3& a, const Vec3& b, con
   std::array<double, 3> angle{};
   for (int k = 0; k < 3; ++k) {
     const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    angle[k] = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846;
+    angle[k] = std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / kPi;
   }
   return angle;
 }

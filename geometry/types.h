@@ -10,6 +10,8 @@ namespace sizemesh {
 using Vec2 = Eigen::Vector2d;  // a point in a face's parameter (uv) space
 using Vec3 = Eigen::Vector3d;  // a point in model space (xyz, file units)
 
+constexpr double kPi = 3.14159265358979323846;
+
 // The exception type: its message is a sentence for the user.
 struct Error : std::runtime_error {
   explicit Error(const std::string& what) : std::runtime_error(what) {}

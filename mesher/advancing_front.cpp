@@ -12,7 +12,6 @@
 namespace sizemesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct FrontEdge {
   int a, b;

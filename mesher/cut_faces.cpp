@@ -693,7 +693,7 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
       bool wedge = false;
       const Vec3 along_curve = (s.xyz[a] - s.xyz[c]).normalized();
       for (int j : junction_next[static_cast<int>(c)])
-        wedge = wedge || along_curve.dot((s.xyz[j] - s.xyz[c]).normalized()) > std::cos(15.0 * M_PI / 180.0);
+        wedge = wedge || along_curve.dot((s.xyz[j] - s.xyz[c]).normalized()) > std::cos(15.0 * kPi / 180.0);
       if (wedge) continue;
       if (beside.size() != 2 || split_tris.count(beside[0]) || split_tris.count(beside[1])) continue;
       Split sp{static_cast<int>(c), a, curve, {}};

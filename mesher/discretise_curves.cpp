@@ -12,7 +12,6 @@
 namespace sizemesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Most a single segment may turn: keeps loops valid in uv when h exceeds a curve's radius.
 constexpr double kMaxTurnPerSegment = kPi / 3;
 // Guard against a size map far below the model's scale.

@@ -427,7 +427,7 @@ void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces
   o.max_turn.assign(faces + 1, 0.0);
   o.size_slope.assign(faces + 1, 0.0);
   for (int f = 1; f <= faces; ++f) {
-    o.max_turn[f] = p.face_phi_c(f) * M_PI / 180.0;
+    o.max_turn[f] = p.face_phi_c(f) * kPi / 180.0;
     const auto beta = p.face_beta.find(f);
     o.size_slope[f] = std::log(beta == p.face_beta.end() ? p.beta : beta->second);
   }

@@ -391,7 +391,7 @@ int rescue_thin_triangles(FaceMesh& fm, const FaceSurface& fs) {
       Vec2 best_uv = uv;
       SurfaceSample best_s = s;
       for (int d = 0; d < 8; ++d) {
-        const double a = d * 3.14159265358979323846 / 4;
+        const double a = d * kPi / 4;
         const Vec2 trial = uv + step * Vec2(std::cos(a), std::sin(a));
         SurfaceSample ts;
         try {

@@ -11,7 +11,6 @@
 namespace sizemesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kWedgeWidth = 0.25;      // wedge width at the first node, in elements
 constexpr double kMaxLeadTurn = kPi / 9;  // most a first segment may turn
 constexpr double kLeadShare = 0.4;        // most of its curve a first segment may take

@@ -9,7 +9,7 @@ namespace sizemesh {
 
 double chord_size(double k, double phi_deg) {
   if (!(k > 0) || !std::isfinite(k)) return kNoLimit;
-  return 2.0 / k * std::sin(0.5 * phi_deg * M_PI / 180.0);  // h_c = 2 r sin(phi_c/2)
+  return 2.0 / k * std::sin(0.5 * phi_deg * kPi / 180.0);  // h_c = 2 r sin(phi_c/2)
 }
 
 double deviation_size(double k, double delta) {

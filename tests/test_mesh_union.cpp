@@ -163,7 +163,7 @@ TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the 
   CHECK(p.not_united.empty());
   CHECK(r->exit_code() == kOk);
   // The box less two discs, the cylinder's outer unit length and its caps.
-  const double expected = 10.0 + 2 * M_PI * radius;
+  const double expected = 10.0 + 2 * kPi * radius;
   require_clean(*r, expected);
   const double diag = std::sqrt(2.0 * 2.0 + 2.0 * 2.0 + 1.0);
   const MeshUnionResult& u = r->report.mesh_union;
@@ -182,7 +182,7 @@ TEST_CASE("a cylinder through a box united at mesh level: junction nodes on the 
   }
   CHECK(inside == 0);
   CHECK(junction == u.junction_nodes);
-  CHECK(junction >= 2 * 2 * M_PI * radius / 0.1);
+  CHECK(junction >= 2 * 2 * kPi * radius / 0.1);
   // The planes y = 0 and y = 1 and the cylinder's side (two regions, across
   // its seam) meshed again from the junction, sampled to the size: every
   // junction edge within a quarter of h = 0.1.
@@ -214,7 +214,7 @@ TEST_CASE("a thin tube through a coarse box: the box is meshed from the junction
   CHECK(r->model->info().preparation.not_united.empty());
   CHECK(r->exit_code() == kOk);
   // The box less the tube's foot, the tube's 2 above the box and its cap.
-  require_clean(*r, 600.0 + 2 * M_PI * radius * 2.0);
+  require_clean(*r, 600.0 + 2 * kPi * radius * 2.0);
   CHECK(r->report.cut_faces.faces_kept == 0);
   // On the box's top (z = 10): the longest edge of the triangles at each
   // distance d from the tube's axis is within twice h_j + ln(1.2) d, h_j the
@@ -224,7 +224,7 @@ TEST_CASE("a thin tube through a coarse box: the box is meshed from the junction
   double hj = 0;
   for (const auto& [a, b] : u.junction) hj = std::max(hj, (r->mesh.xyz[a] - r->mesh.xyz[b]).norm());
   INFO("junction edges up to " << hj);
-  CHECK(hj < 0.25 * radius * 2 * M_PI);
+  CHECK(hj < 0.25 * radius * 2 * kPi);
   int top = 0, over = 0;
   double worst = 0;
   for (const auto& t : r->mesh.tris) {

@@ -37,8 +37,6 @@ using namespace sizemesh;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 TopoDS_Compound compound(std::initializer_list<TopoDS_Shape> parts) {
   TopoDS_Compound c;
   BRep_Builder b;

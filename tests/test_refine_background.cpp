@@ -183,7 +183,7 @@ int non_delaunay_pairs(const BackgroundMesh& bg, double margin) {
   int n = 0;
   for (const auto& [e, ts] : tris_of_edge)
     if (ts.size() == 2 && bg.tri_face[ts[0]] == bg.tri_face[ts[1]])
-      n += opposite_angle(ts[0], e) + opposite_angle(ts[1], e) > M_PI + margin;
+      n += opposite_angle(ts[0], e) + opposite_angle(ts[1], e) > kPi + margin;
   return n;
 }
 

@@ -65,7 +65,7 @@ TEST_CASE("sphere of radius r gives h_c = 2 r sin(phi_c / 2) at every vertex, po
   const double r = 2.5;
   for (double phi : {5.0, 20.0}) {
     Sized s = size_shape(BRepPrimAPI_MakeSphere(r).Shape(), curvature_only(phi));
-    const double expected = 2 * r * std::sin(phi * M_PI / 360);
+    const double expected = 2 * r * std::sin(phi * kPi / 360);
     for (int v = 0; v < s.bg.num_vertices(); ++v) {
       INFO("vertex " << v << " dim " << int(s.bg.dim[v]));
       CHECK(s.m.h_curvature[v] == Approx(expected).epsilon(0.01));

@@ -479,7 +479,7 @@ TEST_CASE("an open tube standing in a body, one face, is capped at its flat mout
   const test::TempDir dir("open_tube");
   const TopoDS_Shape box = BRepPrimAPI_MakeBox(2, 1, 1).Shape();
   const TopoDS_Shape tube =
-      BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(gp_Pnt(1, 0.5, 0.5), gp_Dir(0, 0, 1)), 0.3), 0, 2 * M_PI, 0, 1.5)
+      BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(gp_Pnt(1, 0.5, 0.5), gp_Dir(0, 0, 1)), 0.3), 0, 2 * kPi, 0, 1.5)
           .Face();
   const std::string path = test::write_compound({box, tube}, dir / "tube.brep");
   const std::string args = path + " -q --h-max 0.2 -o " + (dir / "s.vtu");
@@ -495,7 +495,7 @@ TEST_CASE("an open tube standing in a body, one face, is capped at its flat mout
   CHECK(j["mesh"]["failed_faces"].empty());
   // The box's area less the tube's foot, the tube above the box (1 high)
   // and its upper cap.
-  const double r = 0.3, area = 2 * (2 + 2 + 1) - M_PI * r * r + 2 * M_PI * r * 1.0 + M_PI * r * r;
+  const double r = 0.3, area = 2 * (2 + 2 + 1) - kPi * r * r + 2 * kPi * r * 1.0 + kPi * r * r;
   CHECK(j["mesh"]["area"].get<double>() == Approx(area).epsilon(0.01));
 }
 
