@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine (run as root):
-#   bash cmake/setup.sh example   install what is missing, build, mesh the bundled example
+#   bash cmake/setup.sh example   install what is missing, build, install sizemesh (/usr/local), mesh the bundled example
 #   bash cmake/setup.sh test      install what is missing, build, run the whole test suite
 #   bash cmake/setup.sh build     install what is missing and build
 set -euo pipefail
@@ -36,6 +36,7 @@ case "${1:-example}" in
     cd build && ctest --output-on-failure -j "$(nproc)" ;;
   example)
     install_missing; build
-    ./build/sizemesh examples/onera_m6_wing.stp -o onera_m6_wing.vtu --background onera_m6_wing_background.vtu ;;
+    cmake --install build >/dev/null  # sizemesh on the PATH, `import sizemesh` in python3
+    sizemesh examples/onera_m6_wing.stp -o onera_m6_wing.vtu --background onera_m6_wing_background.vtu ;;
   *) echo "usage: bash cmake/setup.sh [example|test|build]" >&2; exit 2 ;;
 esac
