@@ -623,6 +623,28 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
   };
   std::vector<Split> splits;
   std::set<int> split_tris;
+  // The nodes that split the segment from node `from` to node `to` of
+  // `curve` into `pieces` of equal integral of 1/h (Eq. 1a-1b), `integral`
+  // being its running value over equal steps from `from`: each put on the
+  // curve nearest its place along the chord. False when one is not within a
+  // quarter of the segment of that place.
+  auto place_on_curve = [&](int from, int to, int curve, const std::vector<double>& integral, int pieces,
+                            std::vector<Vec3>& out) {
+    const int steps = static_cast<int>(integral.size()) - 1;
+    const double length = (s.xyz[to] - s.xyz[from]).norm();
+    int step = 0;
+    for (int i = 1; i < pieces; ++i) {
+      const double at = integral.back() * i / pieces;
+      while (step + 1 < steps && integral[step + 1] < at) ++step;
+      const double span = integral[step + 1] - integral[step];
+      const double d = length * (step + (span > 0 ? (at - integral[step]) / span : 0.0)) / steps;
+      Vec3 x;
+      const Vec3 target = s.xyz[from] + (s.xyz[to] - s.xyz[from]) * (d / length);
+      if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * length)) return false;
+      out.push_back(x);
+    }
+    return true;
+  };
   for (size_t c = 0; c < s.xyz.size(); ++c) {
     if (!on_junction[c] || s.node_dim[c] != 2 || node_faces[c].size() < 3) continue;
     for (int a : boundary_neighbours(static_cast<int>(c))) {
@@ -697,18 +719,7 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
       if (wedge) continue;
       if (beside.size() != 2 || split_tris.count(beside[0]) || split_tris.count(beside[1])) continue;
       Split sp{static_cast<int>(c), a, curve, {}};
-      int step = 0;
-      for (int i = 1; i < pieces; ++i) {
-        const double at = integral.back() * i / pieces;
-        while (step + 1 < kSteps && integral[step + 1] < at) ++step;
-        const double span = integral[step + 1] - integral[step];
-        const double d = stub * (step + (span > 0 ? (at - integral[step]) / span : 0.0)) / kSteps;
-        Vec3 x;
-        const Vec3 target = s.xyz[c] + (s.xyz[a] - s.xyz[c]) * (d / stub);
-        if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * stub)) break;
-        sp.x.push_back(x);
-      }
-      if (static_cast<int>(sp.x.size()) != pieces - 1) continue;
+      if (!place_on_curve(static_cast<int>(c), a, curve, integral, pieces, sp.x)) continue;
       split_tris.insert(beside.begin(), beside.end());
       splits.push_back(std::move(sp));
     }
@@ -756,24 +767,13 @@ bool space_curve_nodes(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
       sized = size[i] > 0 && std::isfinite(size[i]);
     }
     if (!sized || !(length > 1.5 * size[kSteps / 2])) continue;
-    std::array<double, kSteps + 1> integral{};
+    std::vector<double> integral(kSteps + 1, 0.0);
     for (int i = 1; i <= kSteps; ++i)
       integral[i] = integral[i - 1] + length / kSteps * 0.5 * (1 / size[i - 1] + 1 / size[i]);
     const int pieces = std::min(32, static_cast<int>(std::lround(integral.back())));
     if (pieces < 2) continue;
     Split sp{a, b, curve, {}};
-    int step = 0;
-    for (int i = 1; i < pieces; ++i) {
-      const double at = integral.back() * i / pieces;
-      while (step + 1 < kSteps && integral[step + 1] < at) ++step;
-      const double span = integral[step + 1] - integral[step];
-      const double d = length * (step + (span > 0 ? (at - integral[step]) / span : 0.0)) / kSteps;
-      Vec3 x;
-      const Vec3 target = s.xyz[a] + (s.xyz[b] - s.xyz[a]) * (d / length);
-      if (!on_curve(curve, target, x) || !((x - target).norm() < 0.25 * length)) break;
-      sp.x.push_back(x);
-    }
-    if (static_cast<int>(sp.x.size()) != pieces - 1) continue;
+    if (!place_on_curve(a, b, curve, integral, pieces, sp.x)) continue;
     split_tris.insert(beside.begin(), beside.end());
     splits.push_back(std::move(sp));
   }

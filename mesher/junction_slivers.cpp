@@ -267,23 +267,43 @@ class Cleaner {
     return true;
   }
 
+  // Triangle t = (r, p, q) with its largest angle at r (corner kr), and the
+  // one triangle t2 = (q, p, o) across (p, q), o not yet joined to r: what a
+  // flip or a pinch of t changes. False when (p, q) is not an inner edge of
+  // the mesh or r and o are joined already.
+  struct Across {
+    int r, p, q, kr, t2, o;
+    double angle;  // at r, degrees
+  };
+  bool across_largest(int t, Across& x) const {
+    const auto tr = s_.tris[t];
+    const auto ang = corner_angles_deg(s_.xyz[tr[0]], s_.xyz[tr[1]], s_.xyz[tr[2]]);
+    x.kr = static_cast<int>(std::max_element(ang.begin(), ang.end()) - ang.begin());
+    x.angle = ang[x.kr];
+    x.r = tr[x.kr], x.p = tr[(x.kr + 1) % 3], x.q = tr[(x.kr + 2) % 3];
+    int across = 0;
+    x.t2 = -1;
+    for (int u : node_tris_[x.p])
+      if (u != t && !dead_[u] && corner(u, x.q) < 3) x.t2 = u, ++across;
+    if (across != 1) return false;
+    x.o = -1;
+    for (int n : s_.tris[x.t2])
+      if (n != x.p && n != x.q) x.o = n;
+    const std::vector<int> nr = neighbours(x.r);
+    return x.o >= 0 && x.o != x.r && !std::binary_search(nr.begin(), nr.end(), x.o);
+  }
+  // Triangle x no longer at node n.
+  void drop_tri(int n, int x) {
+    auto& v = node_tris_[n];
+    v.erase(std::remove(v.begin(), v.end(), x), v.end());
+  }
+
   // The edge opposite t's largest angle flipped, when the triangle across it
   // is of the same face.
   bool flip(int t, bool apply, Shape& before, Shape& after) {
-    const auto tr = s_.tris[t];
-    const auto ang = corner_angles_deg(s_.xyz[tr[0]], s_.xyz[tr[1]], s_.xyz[tr[2]]);
-    const int kr = static_cast<int>(std::max_element(ang.begin(), ang.end()) - ang.begin());
-    const int r = tr[kr], p = tr[(kr + 1) % 3], q = tr[(kr + 2) % 3];
-    int t2 = -1, across = 0;
-    for (int u : node_tris_[p])
-      if (u != t && !dead_[u] && corner(u, q) < 3) t2 = u, ++across;
-    if (across != 1 || s_.tri_face[t2] != s_.tri_face[t]) return false;
-    const int f = s_.tri_face[t];
-    int o = -1;
-    for (int n : s_.tris[t2])
-      if (n != p && n != q) o = n;
-    const std::vector<int> nr = neighbours(r);
-    if (o < 0 || o == r || std::binary_search(nr.begin(), nr.end(), o)) return false;
+    Across x;
+    if (!across_largest(t, x) || s_.tri_face[x.t2] != s_.tri_face[t]) return false;
+    const int r = x.r, p = x.p, q = x.q, kr = x.kr, t2 = x.t2, o = x.o, f = s_.tri_face[t];
     const Vec2 ur = s_.tri_uv[t][kr], up = s_.tri_uv[t][(kr + 1) % 3], uq = s_.tri_uv[t][(kr + 2) % 3];
     const Vec2 uo = s_.tri_uv[t2][corner(t2, o)] + (up - s_.tri_uv[t2][corner(t2, p)]);
     before.add(s_.xyz[r], s_.xyz[p], s_.xyz[q]);
@@ -310,12 +330,8 @@ class Cleaner {
     s_.tri_uv[t2] = w2;
     node_tris_[r].push_back(t2);
     node_tris_[o].push_back(t);
-    auto drop = [&](int n, int x) {
-      auto& v = node_tris_[n];
-      v.erase(std::remove(v.begin(), v.end(), x), v.end());
-    };
-    drop(p, t2);
-    drop(q, t);
+    drop_tri(p, t2);
+    drop_tri(q, t);
     flipped_other_ = t2;
     return true;
   }
@@ -326,21 +342,10 @@ class Cleaner {
   // (a junction touching a curve), and is put on it. t goes, the triangle
   // across is split at r in two.
   bool pinch(int t, bool apply, Shape& before, Shape& after) {
-    const auto tr = s_.tris[t];
-    const auto ang = corner_angles_deg(s_.xyz[tr[0]], s_.xyz[tr[1]], s_.xyz[tr[2]]);
-    const int kr = static_cast<int>(std::max_element(ang.begin(), ang.end()) - ang.begin());
-    const int r = tr[kr], p = tr[(kr + 1) % 3], q = tr[(kr + 2) % 3];
-    if (!(ang[kr] > 90) || faces(r).size() < 2) return false;
-    int t2 = -1, across = 0;
-    for (int u : node_tris_[p])
-      if (u != t && !dead_[u] && corner(u, q) < 3) t2 = u, ++across;
-    if (across != 1 || s_.tri_face[t2] == s_.tri_face[t]) return false;
-    const int f2 = s_.tri_face[t2];
-    int o = -1;
-    for (int n : s_.tris[t2])
-      if (n != p && n != q) o = n;
-    const std::vector<int> nr = neighbours(r);
-    if (o < 0 || o == r || std::binary_search(nr.begin(), nr.end(), o)) return false;
+    Across x;
+    if (!across_largest(t, x) || !(x.angle > 90) || faces(x.r).size() < 2 || s_.tri_face[x.t2] == s_.tri_face[t])
+      return false;
+    const int r = x.r, p = x.p, q = x.q, t2 = x.t2, o = x.o, f2 = s_.tri_face[t2];
     const Vec2 up = s_.tri_uv[t2][corner(t2, p)], uq = s_.tri_uv[t2][corner(t2, q)], uo = s_.tri_uv[t2][corner(t2, o)];
     Vec2 ur;
     if (!uv_in(r, f2, 0.5 * (up + uq), ur)) return false;
@@ -373,11 +378,7 @@ class Cleaner {
     node_tris_[r].push_back(t3);
     node_tris_[p].push_back(t3);
     node_tris_[o].push_back(t3);
-    auto drop = [&](int n, int x) {
-      auto& v = node_tris_[n];
-      v.erase(std::remove(v.begin(), v.end(), x), v.end());
-    };
-    drop(p, t2);
+    drop_tri(p, t2);
     flipped_other_ = t2;
     return true;
   }
