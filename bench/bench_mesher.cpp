@@ -1,7 +1,8 @@
 // Surface mesher benchmark (paper 4.1): per shared model, time, triangles,
 // triangles per second and quality counts, with one thread against all threads
 // in the same process, for a uniform size h = diagonal / N (--div, default 40)
-// and for the automatic size map (paper 3, SizeQuery). Prints only.
+// and for the automatic size map (paper 3: the command's stages up to the size
+// query, then its meshing stage). Prints only.
 //
 // Usage: bench_mesher [model-file ...] [--div N] [--no-size-map]
 //        (default: every shared model)
@@ -9,17 +10,14 @@
 #include <cstdio>
 #include <cstring>
 #include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/model.h"
+#include "app/stages.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
-#include "sizing/refine_background.h"
-#include "sizing/size_query.h"
-#include "sizing/smooth.h"
-#include "tests/test_models.h"
+#include "tests/stage_runs.h"
 
 using namespace sizemesh;
 
@@ -29,17 +27,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Meshes with `threads` threads (0: all).
+using Mesher = std::function<SurfaceMesh(int threads)>;
+
 // Meshes once with one thread and once with all, and prints one row.
-void run(const std::string& name, const char* size_name, const Model& model, const SizeFunction& h) {
+void run(const std::string& name, const char* size_name, const Model& model, const SizeField& h, const Mesher& mesh) {
   double cad_area = 0;
   for (int f = 1; f <= model.num_faces(); ++f) cad_area += model.face_area(f);
-  MeshOptions o1;
-  o1.threads = 1;
   auto t0 = std::chrono::steady_clock::now();
-  const SurfaceMesh m1 = mesh_surface(model, h, o1);
+  const SurfaceMesh m1 = mesh(1);
   const double s1 = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
-  const SurfaceMesh m = mesh_surface(model, h, {});
+  const SurfaceMesh m = mesh(0);
   const double sn = seconds_since(t0);
   const MeshQuality q = mesh_quality(m, model, h);
   std::printf("%-32s %-9s %6d %9d %8.3f %8.3f %10.0f %6.2f %6d %6d %5d %5d %5d %9.5f %6.3f %5zu %5d\n",
@@ -80,19 +79,31 @@ int main(int argc, char** argv) {
   for (const std::string& path : files) {
     const std::string name = path.substr(path.find_last_of('/') + 1);
     try {
-      const Model model = load_model(path);
-      const double diag = model.info().diagonal();
-      const UniformSize uniform(diag / div);
-      run(name, "uniform", model, uniform);
-      if (!size_map) continue;
+      // The command's stages (app/stages.h) up to the size query: the model,
+      // and the size map with its accuracy rules and per-face estimate.
+      RunOptions o;
+      o.input = path;
+      o.verbose = false;
+      const std::unique_ptr<RunResult> r = start_run(o);
       const auto t0 = std::chrono::steady_clock::now();
-      BackgroundMesh bg = build_background_mesh(model);
-      SizeMap map = refine_background(model, bg, SizingParams{}, diag);  // as the pipeline does
-      smooth(bg, map);
-      const SizeQuery query = size_query_for(model, bg, map.h);
-      std::printf("    size map built in %.3f s\n",
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      run(name, "size map", model, query);
+      run_stages(*r, o, sizemesh::test::quiet(), until(all_stages(), "size_query"));
+      const double sized = seconds_since(t0);
+      const Model& model = *r->model;
+      const UniformSize uniform(model.info().diagonal() / div);
+      run(name, "uniform", model, uniform, [&](int threads) {
+        MeshOptions mo;
+        mo.threads = threads;
+        return mesh_surface(model, uniform, mo);
+      });
+      if (!size_map) continue;
+      std::printf("    size map built in %.3f s\n", sized);
+      // The meshing stage itself, as the command runs it, with 1 and all threads.
+      run(name, "size map", model, *r->query, [&](int threads) {
+        RunOptions with = o;
+        with.meshing.threads = threads;
+        run_stages(*r, with, sizemesh::test::quiet(), until(from(all_stages(), "meshing"), "meshing"));
+        return r->mesh;
+      });
     } catch (const std::exception& e) {
       std::printf("%-32s error: %s\n", name.c_str(), e.what());
     }

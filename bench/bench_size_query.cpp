@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/model.h"
+#include "background/background_mesh.h"
+#include "cad/model.h"
 #include "sizing/size_query.h"
 
 using namespace sizemesh;
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
 
       // Walk-through, hinted by the previous answer, no counters.
       const Timing walk = run(stream, stream.size(), 3, hinted);
-      // The SizeFunction entry point, with its per-thread counters.
+      // The SizeField entry point, with its per-thread counters.
       query.reset_stats();
       const Timing at = run(stream, stream.size(), 1, [&](const Query& q, int& hint) { return query.at(q.face, q.uv, hint); });
       const QueryStats st = query.stats();

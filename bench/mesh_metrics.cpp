@@ -17,9 +17,9 @@
 #include <unordered_set>
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/model.h"
-#include "geometry/triangle_bvh.h"
+#include "background/background_mesh.h"
+#include "cad/model.h"
+#include "core/triangle_bvh.h"
 
 using namespace sizemesh;
 

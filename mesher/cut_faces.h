@@ -28,10 +28,10 @@
 //         (at most five rounds).
 #pragma once
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/mesh_union.h"
 #include "mesher/surface_mesh.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -44,7 +44,7 @@ struct CutFacesResult {
   int thin_pinched = 0;    // nodes put on the face boundary beside them to the same end
 };
 
-CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeFunction& h, const MeshOptions& o,
+CutFacesResult remesh_cut_faces(SurfaceMesh& s, const Geometry& g, const SizeField& h, const MeshOptions& o,
                                 MeshUnionResult& u);
 
 }  // namespace sizemesh

@@ -19,7 +19,7 @@ constexpr int kMaxSegments = 1000000;
 
 // A curve sampled at m+1 equal parameter steps: Eq. 1a's integral of ds/h by
 // the trapezoid rule on chords, arc length and tangent turning.
-CurveSamples sample_curve(const Geometry& g, const SizeFunction& h, int curve, int face, int m,
+CurveSamples sample_curve(const Geometry& g, const SizeField& h, int curve, int face, int m,
                           long long& queries) {
   double t0, t1;
   g.curve_range(curve, t0, t1);
@@ -97,7 +97,7 @@ std::vector<double> place_nodes(const CurveSamples& s, int n, const std::array<d
 
 }  // namespace
 
-CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h, double deviation) {
+CurveMesh discretise_curves(const Geometry& g, const SizeField& h) {
   const int nc = g.num_curves(), np = g.num_points(), nf = g.num_faces();
   CurveMesh out;
   out.point_node.assign(np + 1, -1);
@@ -149,7 +149,7 @@ CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h, double dev
 
   // Sharp corners (mesher/sharp_corners.h): long first segments; the rest of
   // such a curve is counted again (Eq. 1a) between them.
-  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled, deviation);
+  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled, h.accuracy().deviation);
   for (int c = 1; c <= nc; ++c) {
     const auto& lead = leads[c];
     const CurveSamples& s = sampled[c];

@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/geometry.h"
-#include "sizing/size_function.h"
+#include "core/geometry.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -40,7 +40,7 @@ struct CurveMesh {
 // and the curves of a sharp corner start with one long segment
 // (mesher/sharp_corners.h).
 // Degenerate curves (poles) get none.
-// deviation: the size map's chord-height bound (0: none), passed to corner_leads.
-CurveMesh discretise_curves(const Geometry& g, const SizeFunction& h, double deviation = 0);
+// The size field's deviation bound (h.accuracy(); 0: none) is passed to corner_leads.
+CurveMesh discretise_curves(const Geometry& g, const SizeField& h);
 
 }  // namespace sizemesh

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/types.h"
+#include "core/types.h"
 
 namespace sizemesh {
 

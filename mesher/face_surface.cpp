@@ -59,7 +59,7 @@ double band_depth(const Geometry& g, int face, const UVBox& box, int axis, bool 
 
 }  // namespace
 
-FaceSurface::FaceSurface(const Geometry& g, const SizeFunction& h, int face)
+FaceSurface::FaceSurface(const Geometry& g, const SizeField& h, int face)
     : g_(g),
       h_(h),
       face_(face),

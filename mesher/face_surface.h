@@ -13,9 +13,9 @@
 
 #include <Eigen/Dense>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/uv_stretch.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -36,7 +36,7 @@ struct SurfaceSample {
 
 class FaceSurface {
  public:
-  FaceSurface(const Geometry& g, const SizeFunction& h, int face);
+  FaceSurface(const Geometry& g, const SizeField& h, int face);
 
   SurfaceSample eval(const Vec2& uv);
   // The same without the size (h left 0): for moves that do not need it.
@@ -62,12 +62,13 @@ class FaceSurface {
   Vec2 to_mesher(const Vec2& uv) const { return stretch_.to_mesher(uv); }
 
   const Geometry& geometry() const { return g_; }
+  const SizeField& size_field() const { return h_; }
   int face() const { return face_; }
   long long size_queries = 0;
 
  private:
   const Geometry& g_;
-  const SizeFunction& h_;
+  const SizeField& h_;
   int face_;
   int hint_ = -1;
   double period_u_, period_v_;

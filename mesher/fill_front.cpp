@@ -3,9 +3,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "geometry/background_mesh.h"
+#include "background/background_mesh.h"
 
-#include "geometry/predicates.h"
+#include "core/predicates.h"
 
 namespace sizemesh {
 namespace {

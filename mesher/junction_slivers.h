@@ -33,9 +33,9 @@
 #include <array>
 #include <vector>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/surface_mesh.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -45,7 +45,7 @@ struct JunctionSliverResult {
   int pinched = 0;    // nodes put on a face boundary their thin triangle lay along
 };
 
-JunctionSliverResult remove_junction_slivers(SurfaceMesh& s, const Geometry& g, const SizeFunction& h,
+JunctionSliverResult remove_junction_slivers(SurfaceMesh& s, const Geometry& g, const SizeField& h,
                                              std::vector<std::array<int, 2>>& junction, long long crossing_pairs);
 
 }  // namespace sizemesh

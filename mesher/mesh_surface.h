@@ -23,22 +23,21 @@
 
 #include <string>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/face_mesh.h"
 #include "mesher/surface_mesh.h"
-#include "sizing/params.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
-SurfaceMesh mesh_surface(const Geometry& g, const SizeFunction& h, const MeshOptions& o = {});
+SurfaceMesh mesh_surface(const Geometry& g, const SizeField& h, const MeshOptions& o = {});
 
 // The inside of face fm.face meshed from the boundary fm holds (nodes with
 // uv in the surface's parameters, a global id and shared_xyz each; loops with
 // the face on their left in uv): the front, its strategies and the optimiser
 // of mesh_surface(). On success fm holds the mesh (uv the surface's, new
 // inner nodes with global id -1); else false and `reason`.
-bool mesh_within(const Geometry& g, const SizeFunction& h, FaceMesh& fm, const MeshOptions& o, std::string& reason);
+bool mesh_within(const Geometry& g, const SizeField& h, FaceMesh& fm, const MeshOptions& o, std::string& reason);
 
 // Two faces that lie back to back over a strip (a fin or a tip whose two
 // sides meet with no thickness between them) mesh that strip twice: a pair
@@ -54,9 +53,5 @@ void drop_back_to_back(SurfaceMesh& m);
 // two triangles' quad takes the other diagonal) where the flip keeps their
 // orientation (counted in m.stats.shared_edges_flipped).
 void flip_shared_inner_edges(SurfaceMesh& m);
-
-// Hands the mesher the accuracy the size map was built for: p's deviation
-// bound, phi_c per face (the turn an inner edge may make) and the map's h_min.
-void set_accuracy(MeshOptions& o, const SizingParams& p, double h_min, int faces);
 
 }  // namespace sizemesh

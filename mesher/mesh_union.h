@@ -23,9 +23,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/surface_mesh.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -52,7 +52,7 @@ struct MeshUnionResult {
 void count_junction_node(MeshUnionResult& u, const Geometry& g, const Vec3& x,
                          std::vector<std::pair<int, Vec2>> on, double off);
 
-MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeFunction& h,
+MeshUnionResult unite_meshes(SurfaceMesh& mesh, const Geometry& g, const SizeField& h,
                              const std::vector<std::vector<int>>& parts);
 
 }  // namespace sizemesh

@@ -11,7 +11,8 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "geometry/predicates.h"
+#include "core/mesh_topology.h"
+#include "core/predicates.h"
 #include "mesher/self_intersection.h"
 
 namespace sizemesh {
@@ -25,7 +26,7 @@ struct TriangleMeasure {
   std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
 };
 
-TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h, size_t t, int& hint) {
+TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeField& h, size_t t, int& hint) {
   TriangleMeasure r;
   const auto& tr = m.tris[t];
   const Vec3 &a = m.xyz[tr[0]], &b = m.xyz[tr[1]], &c = m.xyz[tr[2]];
@@ -251,7 +252,7 @@ bool inverted_triangle(const SurfaceMesh& m, const Geometry& g, size_t t) {
   return ns.norm() > 0 && n.dot(ns) <= 0;
 }
 
-MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h) {
+MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h) {
   MeshQuality q;
   const size_t nt = m.tris.size();
   q.triangles = static_cast<int>(nt);
@@ -289,7 +290,7 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunc
   tbb::parallel_for(size_t(0), nt, [&](size_t t) {
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = m.tris[t][k], b = m.tris[t][(k + 1) % 3];
-      const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+      const uint64_t key = edge_key(a, b);
       uses[3 * t + k] = {key << 1 | (a > b ? 1u : 0u), static_cast<uint32_t>(3 * t + k)};
     }
   });

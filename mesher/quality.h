@@ -37,9 +37,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/surface_mesh.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
@@ -68,7 +68,7 @@ struct MeshQuality {
   double area = 0;
 };
 
-MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFunction& h);
+MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h);
 
 // Triangle t of m is inverted: its normal and its face's surface normal at
 // its uv centroid (oriented as in the shell) point apart.

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "geometry/predicates.h"
-#include "geometry/triangle_bvh.h"
+#include "core/predicates.h"
+#include "core/triangle_bvh.h"
 
 namespace sizemesh {
 

@@ -8,7 +8,7 @@
 // Rules by shared nodes: none, the triangles meet; one node v, the edge
 // opposite v of either meets the other; an edge, they are coplanar and fold
 // onto the same side; all three, a duplicate. Candidates come from box overlaps
-// in the triangle hierarchy; the tests are floating point (geometry/predicates.h).
+// in the triangle hierarchy; the tests are floating point (core/predicates.h).
 #pragma once
 
 #include <array>

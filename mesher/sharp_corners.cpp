@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "sizing/curvature_size.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 namespace {
@@ -56,7 +56,7 @@ class Leads {
   }
 
   // The chord of height `deviation` on `face` at the point where l ends
-  // (sizing/curvature_size.h): on a curved face a first segment longer than
+  // (core/size_field.h): on a curved face a first segment longer than
   // this leaves the corner's triangle farther off the surface than asked.
   // No bound where the face is flat or its curvature cannot be evaluated.
   double deviation_cap(Link l, int face, double deviation) const {

@@ -28,7 +28,7 @@
 #include <array>
 #include <vector>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 #include "mesher/curve_samples.h"
 
 namespace sizemesh {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "geometry/geometry.h"
+#include "core/geometry.h"
 
 namespace sizemesh {
 

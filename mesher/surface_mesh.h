@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/types.h"
+#include "core/types.h"
 
 namespace sizemesh {
 
@@ -27,7 +27,7 @@ struct MeshStats {
   double seconds_faces = 0;     // wall time: the parallel face stage (front + optimisation)
   double seconds_front = 0;     // summed over faces: advancing front
   double seconds_optimise = 0;  // summed over faces: swaps and smoothing
-  long long size_queries = 0;   // calls of SizeFunction::at / at_xyz
+  long long size_queries = 0;   // calls of SizeField::at / at_xyz
   int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
   long long front_steps = 0;    // tries at front edges, over every face and strategy
   int faces_retried = 0;        // faces whose front got stuck and were meshed again
@@ -59,22 +59,10 @@ struct SurfaceMesh {
 struct MeshOptions {
   int threads = 0;           // 0: all hardware threads
   int optimise_passes = 3;   // swap + smoothing passes per face
-  // Triangles the size map asks for per face (index face id; sizing/triangle_estimate.h):
+  // Triangles the size map asks for per face (index face id; estimated by the sizing stage):
   // the face mesher's work budget. Empty: budgets from the boundary alone.
   std::vector<double> expected_triangles;
-  // The chord-height bound the size map was built with (SizingParams::deviation;
-  // 0: none): a sharp corner's long first segment on a curved face stays within it.
-  double deviation = 0;
-  // Per face (index face id; empty or 0: none), the angle in radians an inner
-  // edge may turn along the surface (phi_c there, SizingParams): where the
-  // front left an edge over its size on a curved face, its chord cuts deeper
-  // than phi_c allows and it is split (optimise.h).
-  std::vector<double> max_turn;
-  double h_min = 0;  // the size map's floor: a split for turning leaves no edge under it
-  // Per face (index face id; empty or 0: none), the size map's bound on its
-  // gradient, ln(beta) (Eq. 12): sizes met along a junction the size map
-  // never saw (a union of meshes) grow away from it no faster.
-  std::vector<double> size_slope;
+  // (The accuracy rules the size map was built with travel with it: SizeField::accuracy().)
   // Called after each face with (faces done, faces in all), from any thread.
   std::function<void(int, int)> on_face_done;
 };

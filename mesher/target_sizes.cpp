@@ -2,7 +2,7 @@
 
 namespace sizemesh {
 
-std::vector<double> target_sizes(const SurfaceMesh& mesh, const SizeFunction& h) {
+std::vector<double> target_sizes(const SurfaceMesh& mesh, const SizeField& h) {
   std::vector<double> target(mesh.xyz.size(), -1.0);
   int hint = -1;
   for (size_t t = 0; t < mesh.tris.size(); ++t) {

@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "mesher/surface_mesh.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 
 // #nodes sizes; -1 for a node no triangle uses.
-std::vector<double> target_sizes(const SurfaceMesh& mesh, const SizeFunction& h);
+std::vector<double> target_sizes(const SurfaceMesh& mesh, const SizeField& h);
 
 }  // namespace sizemesh

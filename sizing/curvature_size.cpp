@@ -12,22 +12,6 @@ double chord_size(double k, double phi_deg) {
   return 2.0 / k * std::sin(0.5 * phi_deg * kPi / 180.0);  // h_c = 2 r sin(phi_c/2)
 }
 
-double deviation_size(double k, double delta) {
-  if (!(k > 0) || !std::isfinite(k) || !(delta > 0)) return kNoLimit;
-  const double r = 1.0 / k;
-  return delta >= r ? 2 * r : 2 * std::sqrt(2 * r * delta - delta * delta);  // chord of height delta
-}
-
-double face_deviation_size(const Geometry& g, int face, const Vec2& uv, double delta) {
-  double k = 0;
-  try {
-    if (!g.max_curvature(face, uv, k)) return std::numeric_limits<double>::quiet_NaN();
-  } catch (const Error&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return deviation_size(k, delta);
-}
-
 namespace {
 // Under a deviation bound delta, radii r <= delta are below its accuracy: the
 // whole arc lies within delta of its chord.

@@ -17,8 +17,9 @@
 
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
+#include "core/size_field.h"  // deviation_size, face_deviation_size
 #include "sizing/params.h"
 #include "sizing/size_map.h"
 
@@ -28,16 +29,10 @@ std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg,
 
 // 2 r sin(phi/2) for curvature k (1/length) and phi in degrees; kNoLimit for k <= 0.
 double chord_size(double k, double phi_deg);
-// Chord of an arc of curvature k whose height is delta: 2 sqrt(2 r delta - delta^2)
-// (2 r when delta >= r); kNoLimit for k <= 0 or delta <= 0.
-double deviation_size(double k, double delta);
 // The curvature whose arc's chord h lies as far off it as an equilateral
 // triangle of side h lies off a surface of principal curvatures k1, k2:
 // max(|k1|, 2/3 |k1 + k2|) (|k1| >= |k2|; 4/3 k on a sphere, k on a cylinder).
 double triangle_deviation_curvature(double k1, double k2);
-// deviation_size of a face's largest curvature at uv; NaN where the kernel
-// cannot evaluate the curvature there (the caller decides what that means).
-double face_deviation_size(const Geometry& g, int face, const Vec2& uv, double delta);
 
 // The curvature size at one point of a face, and of a curve (kNoLimit where flat or undefined).
 double face_curvature_size(const Geometry& g, int face, const Vec2& uv, const SizingParams& p);

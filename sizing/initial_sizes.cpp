@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/stopwatch.h"
+#include "core/stopwatch.h"
 #include "sizing/curvature_size.h"
 #include "sizing/proximity_size.h"
 #include "sizing/user_size.h"

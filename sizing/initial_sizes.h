@@ -8,8 +8,8 @@
 // Output:  SizeMap with h = h_initial.
 #pragma once
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
 #include "sizing/params.h"
 #include "sizing/size_map.h"
 

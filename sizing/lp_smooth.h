@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "geometry/background_mesh.h"
+#include "background/background_mesh.h"
 
 namespace sizemesh {
 

@@ -1,9 +1,9 @@
 // The global sizing options in one table: name, member, default (the
 // member's initial value), help text, and the command-line range check where
 // the command line refuses a value itself (exit 2) rather than the
-// validation (exit 1). The table drives the command line (src/main.cpp), the
-// config file's global keys (sizing/params.cpp), and the README's option
-// list is checked against it by a test.
+// validation (exit 1). The table drives the command line (app/cli_options.cpp), the
+// config file's global keys (sizing/params.cpp), and the option list of
+// docs/options.md is checked against it by a test.
 #pragma once
 
 #include <set>

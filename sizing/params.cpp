@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "geometry/types.h"
+#include "core/types.h"
 #include "sizing/options.h"
 
 namespace sizemesh {
@@ -180,6 +180,20 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("point_size")) read_map(j["point_size"], "point_size", p.point_size, user_size);
   if (j.contains("curve_size")) read_map(j["curve_size"], "curve_size", p.curve_size, user_size);
   if (j.contains("face_size")) read_map(j["face_size"], "face_size", p.face_size, user_size);
+}
+
+AccuracyRules accuracy_rules(const SizingParams& p, double h_min, int faces) {
+  AccuracyRules r;
+  r.deviation = p.deviation;
+  r.h_min = h_min;
+  r.max_turn.assign(faces + 1, 0.0);
+  r.size_slope.assign(faces + 1, 0.0);
+  for (int f = 1; f <= faces; ++f) {
+    r.max_turn[f] = p.face_phi_c(f) * kPi / 180.0;
+    const auto beta = p.face_beta.find(f);
+    r.size_slope[f] = std::log(beta == p.face_beta.end() ? p.beta : beta->second);
+  }
+  return r;
 }
 
 }  // namespace sizemesh

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/size_field.h"
+
 namespace sizemesh {
 
 // A prescribed size: a number, or a muparser expression of x, y, z.
@@ -18,7 +20,7 @@ struct UserSize {
 
 // Which gaps the proximity size resolves: across the fluid (between parts, a
 // slot between a flap and a wing), across the solid (a plate's thickness), or
-// both. Auto: fluid for a closed model (geometry/prepare.h makes aircraft
+// both. Auto: fluid for a closed model (cad/prepare.h makes aircraft
 // closed; a solid with cavities is a flow domain, its fluid inside), both
 // otherwise.
 enum class GapSide { Auto, Fluid, Solid, Both };
@@ -38,7 +40,6 @@ struct SizingParams {
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   GapSide gap_side = GapSide::Auto;
   bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
-  bool delaunay_flips = true;     // with refine_background: flip edges to make the background Delaunay in space
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;
@@ -73,6 +74,12 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
 // model's face f (1-based) came from face source[f - 1] and inherits its
 // entries. Throws Error on ids outside 1..sewn_faces.
 void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_faces);
+
+// The accuracy rules a size map built from p hands the mesher (SizeField::
+// set_accuracy) for a model of `faces` faces whose map has the floor h_min:
+// p's deviation bound, phi_c per face in radians (the turn an inner edge may
+// make), ln(beta) per face (the gradient bound along a junction).
+AccuracyRules accuracy_rules(const SizingParams& p, double h_min, int faces);
 
 // Reads a JSON config into p (keys absent from the file keep p's values).
 // Throws Error on unreadable or malformed files and unknown keys.

@@ -8,7 +8,7 @@
 
 #include "sizing/curvature_size.h"
 #include "sizing/size_map.h"
-#include "geometry/triangle_bvh.h"
+#include "core/triangle_bvh.h"
 
 namespace sizemesh {
 

@@ -20,8 +20,8 @@
 
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
 #include "sizing/params.h"
 #include "sizing/size_map.h"
 

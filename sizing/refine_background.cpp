@@ -40,12 +40,12 @@ int longest_edge(const BackgroundMesh& bg, int t) {
 }  // namespace
 
 void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
-                       RefineStats* stats) {
+                       RefineStats* stats, bool flips) {
   RefineStats s;
   s.vertices_before = bg.num_vertices();
   // Delaunay in space first: the tessellation's obtuse triangles would make
   // Eq. 11 lower sizes across their short height (see flip_to_delaunay).
-  if (p.refine_background && p.delaunay_flips) {
+  if (p.refine_background && flips) {
     s.flips = flip_to_delaunay(bg, g);
     if (s.flips > 0) m = initial_sizes(g, bg, p, diagonal);
   }
@@ -107,7 +107,7 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
     }
     const int n = split.empty() ? 0 : split_edges(bg, g, split);
     if (n == 0) break;
-    if (p.delaunay_flips) s.flips += flip_to_delaunay(bg, g);  // the split's new triangles too
+    if (flips) s.flips += flip_to_delaunay(bg, g);  // the split's new triangles too
     s.rounds = round + 1;
     s.edges_split += n;
     m = initial_sizes(g, bg, p, diagonal);
@@ -117,9 +117,9 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
 }
 
 SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
-                          RefineStats* stats) {
+                          RefineStats* stats, bool flips) {
   SizeMap m = initial_sizes(g, bg, p, diagonal);
-  refine_background(g, bg, p, diagonal, m, stats);
+  refine_background(g, bg, p, diagonal, m, stats, flips);
   return m;
 }
 

@@ -26,8 +26,8 @@
 // Output:  the initial size map on the refined background (not yet smoothed).
 #pragma once
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
 #include "sizing/params.h"
 #include "sizing/size_map.h"
 
@@ -46,11 +46,13 @@ constexpr double kCurvatureMiss = 1.25;
 constexpr int kRefineMaxRounds = 8;
 
 // m: the initial size map on bg (initial_sizes()), replaced by the one on the
-// refined background.
+// refined background. The edges are flipped to Delaunay in space before and
+// after each round of splits; `flips` false leaves them (only to measure
+// what the flips give).
 void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
-                       RefineStats* stats = nullptr);
+                       RefineStats* stats = nullptr, bool flips = true);
 // Both steps: the initial sizes, then the refinement.
 SizeMap refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal,
-                          RefineStats* stats = nullptr);
+                          RefineStats* stats = nullptr, bool flips = true);
 
 }  // namespace sizemesh

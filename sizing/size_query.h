@@ -10,7 +10,7 @@
 // Outputs (queries)
 //   locate(face, uv, hint)  the base triangle of uv in that face's patch and the
 //                           size interpolated linearly (barycentric) inside it
-//   at(face, uv, hint)      the same as a SizeFunction; counts into stats()
+//   at(face, uv, hint)      the same as a SizeField; counts into stats()
 //   at_xyz(xyz)             the size at the nearest background triangle in 3D
 //
 // How a query is answered (paper 4.2: "the search occurs in the two-dimensional
@@ -51,9 +51,9 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
-#include "sizing/size_function.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
+#include "core/size_field.h"
 
 namespace sizemesh {
 class TriangleBVH;
@@ -72,7 +72,7 @@ struct QueryStats {
   double mean_visited() const { return queries ? static_cast<double>(visited) / queries : 0.0; }
 };
 
-class SizeQuery final : public SizeFunction {
+class SizeQuery final : public SizeField {
  public:
   SizeQuery(const BackgroundMesh& bg, std::vector<double> h, std::vector<double> period_u = {},
             std::vector<double> period_v = {});

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/predicates.h"
+#include "core/predicates.h"
 #include "sizing/size_query_face.h"
 
 namespace sizemesh::size_query_detail {

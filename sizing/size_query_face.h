@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/background_mesh.h"
+#include "background/background_mesh.h"
 #include "sizing/size_query.h"
 
 namespace sizemesh {

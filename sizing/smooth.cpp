@@ -1,7 +1,7 @@
 #include "sizing/smooth.h"
 
-#include "geometry/stopwatch.h"
-#include "geometry/vertex_triangles.h"
+#include "core/stopwatch.h"
+#include "core/mesh_topology.h"
 
 #include <algorithm>
 #include <cmath>

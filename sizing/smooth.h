@@ -15,7 +15,7 @@
 
 #include <vector>
 
-#include "geometry/background_mesh.h"
+#include "background/background_mesh.h"
 #include "sizing/size_map.h"
 
 namespace sizemesh {

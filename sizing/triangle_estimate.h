@@ -17,7 +17,7 @@
 #include <array>
 #include <vector>
 
-#include "geometry/background_mesh.h"
+#include "background/background_mesh.h"
 #include "sizing/size_map.h"
 
 namespace sizemesh {

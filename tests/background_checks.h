@@ -5,8 +5,8 @@
 #include <map>
 #include <set>
 
-#include "geometry/background_mesh.h"
-#include "geometry/geometry.h"
+#include "background/background_mesh.h"
+#include "core/geometry.h"
 
 namespace sizemesh::test {
 

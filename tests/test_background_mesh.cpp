@@ -13,8 +13,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "geometry/background_mesh.h"
-#include "geometry/occt_model.h"
+#include "background/background_mesh.h"
+#include "cad/occt_model.h"
 #include "tests/background_checks.h"
 #include "tests/test_models.h"
 

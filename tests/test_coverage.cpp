@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "src/pipeline.h"
+#include "app/pipeline.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;

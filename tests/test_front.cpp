@@ -10,18 +10,19 @@
 
 #include <cmath>
 
-#include "geometry/background_mesh.h"
-#include "geometry/occt_model.h"
+#include "background/background_mesh.h"
+#include "cad/occt_model.h"
 #include "mesher/advancing_front.h"
 #include "mesher/discretise_curves.h"
 #include "mesher/face_boundary.h"
 #include "mesher/fill_front.h"
-#include "geometry/predicates.h"
+#include "core/predicates.h"
 #include "mesher/mesh_surface.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
 #include "sizing/triangle_estimate.h"
+#include "tests/stage_runs.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -47,16 +48,19 @@ double triangles_area(const FaceMesh& fm) {
   return a;
 }
 
-// The default pipeline's size map on a model.
+// The command's run of a model (app/stages.h), stopped once its size query is built.
 struct Sized {
-  Model model;
-  BackgroundMesh bg;
-  SizeMap h;
-  explicit Sized(const std::string& file) : model(load_model(test::model_path(file))) {
-    bg = build_background_mesh(model);
-    h = refine_background(model, bg, SizingParams{}, model.info().diagonal());
-    smooth(bg, h);
-  }
+  std::unique_ptr<RunResult> run;
+  const Model& model;
+  const BackgroundMesh& bg;
+  const SizeMap& h;
+  const SizeQuery& query;
+  explicit Sized(const std::string& file)
+      : run(test::run_until(test::run_options(file), "size_query")),
+        model(*run->model),
+        bg(run->bg),
+        h(run->sizes),
+        query(*run->query) {}
 };
 
 }  // namespace
@@ -66,13 +70,13 @@ TEST_CASE("every front strategy stays inside the face where a front once ran awa
   // outside the searched box was taken as apex, and a triangle left the
   // region through a front node: the front then grew without end.
   Sized s("manta2_openvsp.stp");
-  const SizeQuery query = size_query_for(s.model, s.bg, s.h.h);
+  const SizeQuery& query = s.query;
   const CurveMesh cm = discretise_curves(s.model, query);
   FaceSurface fs(s.model, query, 2);
   const FaceMesh boundary = face_boundary(s.model, cm, fs);
   const double domain = loops_area(boundary);
   REQUIRE(domain > 0);
-  const TriangleEstimate e = estimate_triangles(s.bg, s.h.h, s.h.limit, s.model.num_faces());
+  const TriangleEstimate& e = s.run->estimate;
   const long long budget = front_step_budget(e.per_face[2], boundary.num_nodes());
   bool closed = false;
   for (int strategy = 0; strategy < kStrategyCount; ++strategy) {
@@ -99,7 +103,7 @@ TEST_CASE("the front advances from a trailing edge where the surface stalls acro
   // The curve nodes' uv lie at v = 0, where the normal is undefined and no
   // front point can be placed.
   Sized s("f16_vsp311_openvsp.stp");
-  const SizeQuery query = size_query_for(s.model, s.bg, s.h.h);
+  const SizeQuery& query = s.query;
   const CurveMesh cm = discretise_curves(s.model, query);
   FaceSurface fs(s.model, query, 32);
   REQUIRE(fs.has_band());
@@ -121,7 +125,7 @@ TEST_CASE("the front advances from a trailing edge where the surface stalls acro
   // trailing edge (x = 15). From the band's edge the front advances; from
   // v = 0 it cannot, and the face was closed by the lenient fallback with a
   // fan of slivers there.
-  const TriangleEstimate e = estimate_triangles(s.bg, s.h.h, s.h.limit, s.model.num_faces());
+  const TriangleEstimate& e = s.run->estimate;
   const long long budget = front_step_budget(e.per_face[32], raw.num_nodes());
   auto open_at_trailing_edge = [&](const FaceMesh& boundary) {
     int open = 0;
@@ -203,12 +207,9 @@ TEST_CASE("the integral of 1/h^2 with h linear on a triangle is exact", "[estima
 TEST_CASE("the triangle estimate is within 30% of the triangles the mesher makes, per model", "[estimate]") {
   for (const char* file : {"onera_m6_wing.stp", "hemisphere_cylinder_domain.stp", "cone70_capsule_sting.step"}) {
     SECTION(file) {
-      Sized s(file);
-      const SizeQuery query = size_query_for(s.model, s.bg, s.h.h);
-      const TriangleEstimate e = estimate_triangles(s.bg, s.h.h, s.h.limit, s.model.num_faces());
-      MeshOptions o;
-      o.expected_triangles = e.per_face;
-      const SurfaceMesh m = mesh_surface(s.model, query, o);
+      const auto run = test::run_until(test::run_options(file));
+      const TriangleEstimate& e = run->estimate;
+      const SurfaceMesh& m = run->mesh;
       REQUIRE(m.failures.empty());
       const double ratio = m.tris.size() / e.total;
       INFO(file << ": estimate " << e.total << ", actual " << m.tris.size());

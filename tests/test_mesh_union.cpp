@@ -22,7 +22,7 @@
 #include <map>
 #include <set>
 
-#include "src/pipeline.h"
+#include "app/pipeline.h"
 #include "tests/brep_file.h"
 #include "tests/temp_dir.h"
 

@@ -32,9 +32,9 @@
 #include <set>
 #include <string>
 
-#include "geometry/background_mesh.h"
-#include "geometry/occt_model.h"
-#include "geometry/predicates.h"
+#include "background/background_mesh.h"
+#include "cad/occt_model.h"
+#include "core/predicates.h"
 #include "mesher/discretise_curves.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/optimise.h"
@@ -44,6 +44,7 @@
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
+#include "tests/stage_runs.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -53,7 +54,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // h grows linearly with the distance from a point, clamped to [h0, h_max].
-class GradedSize final : public SizeFunction {
+class GradedSize final : public SizeField {
  public:
   GradedSize(const Geometry& g, Vec3 center, double h0, double slope, double h_max)
       : g_(g), c_(center), h0_(h0), slope_(slope), h_max_(h_max) {}
@@ -193,11 +194,9 @@ TEST_CASE("a curve that wobbles far below its elements gets segments by its size
   // tangents turn back and forth by tens of radians in all, thousandths of
   // a foot across. At 60 degrees a segment, that turning asked for up to
   // five times the segments their size does.
-  const Model model = load_model(test::model_path("b777_nosplit_openvsp.stp"));
-  BackgroundMesh bg = build_background_mesh(model);
-  SizeMap sizes = refine_background(model, bg, SizingParams{}, model.info().diagonal());
-  smooth(bg, sizes);
-  const SizeQuery query = size_query_for(model, bg, sizes.h);
+  const auto run = test::run_until(test::run_options("b777_nosplit_openvsp.stp"), "size_query");
+  const Model& model = *run->model;
+  const SizeQuery& query = *run->query;
   const CurveMesh cm = discretise_curves(model, query);
   int wobbly = 0;
   for (int c = 1; c <= model.num_curves(); ++c) {
@@ -404,7 +403,11 @@ TEST_CASE("with a deviation bound, a sharp corner's first segment is no longer t
   const UniformSize size(h);
   // First segment at the apex of each of the 4 arcs (chord length).
   auto first_segments = [&](double deviation) {
-    const CurveMesh cm = discretise_curves(model, size, deviation);
+    UniformSize bounded(h);
+    AccuracyRules rules;
+    rules.deviation = deviation;
+    bounded.set_accuracy(rules);
+    const CurveMesh cm = discretise_curves(model, bounded);
     std::vector<double> out;
     for (int c = 1; c <= model.num_curves(); ++c) {
       if (std::abs(model.curve_length(c) - R * theta) > 1e-6) continue;
@@ -427,9 +430,11 @@ TEST_CASE("with a deviation bound, a sharp corner's first segment is no longer t
     CHECK(d < 1.1 * h);
   }
   CHECK(first_segments(0.01).size() == 4);
-  MeshOptions o;
-  o.deviation = 0.1;
-  const SurfaceMesh m = mesh_surface(model, size, o);
+  UniformSize bounded(h);
+  AccuracyRules rules;
+  rules.deviation = 0.1;
+  bounded.set_accuracy(rules);
+  const SurfaceMesh m = mesh_surface(model, bounded, MeshOptions{});
   const MeshQuality q = mesh_quality(m, model, size);
   require_valid_closed(model, m, q, 1.0);
 }
@@ -616,7 +621,7 @@ class FaultyFace final : public Geometry {
 };
 
 // A size map with a hole: no positive size on one side of the model.
-class SizeWithHole final : public SizeFunction {
+class SizeWithHole final : public SizeField {
  public:
   SizeWithHole(const Geometry& g, double h) : g_(g), h_(h) {}
   double at(int face, const Vec2& uv, int&) const override { return at_xyz(g_.eval_face(face, uv).p); }
@@ -941,21 +946,15 @@ TEST_CASE("with a deviation bound the mesh stays that close to doubly curved, sa
        }}};
   const double d = 0.05;
   for (const Case& c : cases) {
-    const Model model = model_from_shape(c.shape);
-    const double diag = model.info().diagonal();
-    SizingParams p;
-    p.phi_c_deg = 90;  // the deviation bound decides
-    p.deviation = d;
-    p.local_proximity = false;
-    p.h_min = 1e-3;
-    p.h_max = 1e3;
-    BackgroundMesh bg = build_background_mesh(model);
-    SizeMap h = refine_background(model, bg, p, diag);
-    smooth(bg, h);
-    const SizeQuery query = size_query_for(model, bg, h.h);
-    MeshOptions o;
-    o.deviation = d;
-    const SurfaceMesh m = mesh_surface(model, query, o);
+    RunOptions o;
+    o.verbose = false;
+    o.sizing.phi_c_deg = 90;  // the deviation bound decides
+    o.sizing.deviation = d;
+    o.sizing.local_proximity = false;
+    o.sizing.h_min = 1e-3;
+    o.sizing.h_max = 1e3;
+    const auto run = test::run_model(model_from_shape(c.shape), o);
+    const SurfaceMesh& m = run->mesh;
     REQUIRE(m.failures.empty());
     double worst = 0;
     int beyond = 0;  // triangles with a point further than d (and 2%)

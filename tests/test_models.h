@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/model.h"
+#include "cad/model.h"
 
 namespace sizemesh::test {
 

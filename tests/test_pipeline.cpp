@@ -14,15 +14,10 @@
 #include <cstring>
 #include <unistd.h>
 
-#include "geometry/background_mesh.h"
-#include "geometry/model.h"
-#include "mesher/mesh_surface.h"
-#include "sizing/params.h"
-#include "sizing/refine_background.h"
-#include "sizing/size_query.h"
-#include "sizing/smooth.h"
+#include "cad/model.h"
 #include "tests/cli_runner.h"
 #include "tests/exact_intersections.h"
+#include "tests/stage_runs.h"
 #include "tests/temp_dir.h"
 #include "tests/test_models.h"
 
@@ -204,15 +199,10 @@ TEST_CASE("default sizes mesh the ONERA M6 in at most 60k triangles within 2e-4 
   // are compared with the surface point at the same uv, an upper bound on
   // their distance to the CAD. An edge the front left 1.4 sizes long across
   // the rounded tip cuts 2.07e-4 deep without the turn bound.
-  const Model model = load_model(test::model_path("onera_m6_wing.stp"));
+  const auto run = test::run_until(test::run_options("onera_m6_wing.stp"));
+  const Model& model = *run->model;
   const double diag = model.info().diagonal();
-  BackgroundMesh bg = build_background_mesh(model);
-  SizeMap h = refine_background(model, bg, SizingParams{}, diag);
-  smooth(bg, h);
-  const SizeQuery query = size_query_for(model, bg, h.h);
-  MeshOptions o;
-  set_accuracy(o, SizingParams{}, h.h_min, model.num_faces());
-  const SurfaceMesh m = mesh_surface(model, query, o);
+  const SurfaceMesh& m = run->mesh;
   REQUIRE(m.failures.empty());
   CHECK(m.tris.size() <= 60000);
   CHECK(m.tris.size() >= 30000);  // and the wing is still resolved
@@ -240,20 +230,19 @@ TEST_CASE("the ONERA M6 under a coarse deviation bound: chords off by more are s
   // 20 degrees; dropped, as splits for length are, they left an edge middle
   // 1.62 d off the surface at its uv (1.17 d now: the rest are chords across
   // the tip cap where it narrows to nothing at the trailing edge).
-  const Model model = load_model(test::model_path("onera_m6_wing.stp"));
+  // The command's stages, stopped once the model is prepared to set the
+  // sizes relative to its diagonal, then run on.
+  const RunOptions o = test::run_options("onera_m6_wing.stp");
+  const auto run = test::run_until(o, "prepare");
+  const Model& model = *run->model;
   const double diag = model.info().diagonal();
-  SizingParams p;
+  SizingParams& p = run->params;
   p.deviation = 8e-4 * diag;
   p.phi_c_deg = 90;
   p.h_min = 1e-4 * diag;
   p.h_max = 0.05 * diag;
-  BackgroundMesh bg = build_background_mesh(model);
-  SizeMap h = refine_background(model, bg, p, diag);
-  smooth(bg, h);
-  const SizeQuery query = size_query_for(model, bg, h.h);
-  MeshOptions o;
-  set_accuracy(o, p, h.h_min, model.num_faces());
-  const SurfaceMesh m = mesh_surface(model, query, o);
+  test::run_on(*run, o, "background");
+  const SurfaceMesh& m = run->mesh;
   REQUIRE(m.failures.empty());
   double worst = 0;
   int beyond = 0;  // edge middles further than 1.1 d off (each edge once per triangle)

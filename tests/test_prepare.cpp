@@ -1,4 +1,4 @@
-// Geometry preparation (geometry/prepare): shapes built with OCCT whose
+// Geometry preparation (cad/prepare): shapes built with OCCT whose
 // wetted surface is known exactly: a box wing through a cylinder fuselage,
 // two touching boxes, and a wing made of two open halves with an internal
 // planform plane; the shared OpenVSP aircraft close into one surface.
@@ -26,11 +26,11 @@
 #include <map>
 #include <set>
 
-#include "geometry/occt_model.h"
+#include "cad/occt_model.h"
 #include "mesher/mesh_surface.h"
 #include "mesher/quality.h"
 #include "sizing/params.h"
-#include "sizing/size_function.h"
+#include "core/size_field.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;

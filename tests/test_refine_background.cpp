@@ -11,13 +11,14 @@
 #include <map>
 #include <set>
 
-#include "geometry/occt_model.h"
+#include "cad/occt_model.h"
 #include "sizing/initial_sizes.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
 #include "sizing/triangle_estimate.h"
 #include "tests/background_checks.h"
+#include "tests/stage_runs.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -62,13 +63,14 @@ TEST_CASE("away from small holes in a large flat face the size grows at the grad
     shape = BRepAlgoAPI_Cut(shape, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, -1), gp_Dir(0, 0, 1)), 0.5, 102.0).Shape())
                 .Shape();
   auto size_at = [&](bool refine, const Vec3& p, double& h_hole) {
-    Model model = model_from_shape(shape);
-    BackgroundMesh bg = build_background_mesh(model);
-    SizingParams params;
-    params.refine_background = refine;
-    params.local_proximity = false;
-    SizeMap m = refine_background(model, bg, params, model.info().diagonal());
-    smooth(bg, m);
+    RunOptions o;
+    o.verbose = false;
+    o.sizing.refine_background = refine;
+    o.sizing.local_proximity = false;
+    const auto run = test::run_model(model_from_shape(shape), o, "size_query");  // the command's stages
+    const Model& model = *run->model;
+    const BackgroundMesh& bg = run->bg;
+    const SizeMap& m = run->sizes;
     h_hole = kNoLimit;
     for (int v = 0; v < bg.num_vertices(); ++v) h_hole = std::min(h_hole, m.h[v]);
     int top = 0;
@@ -79,7 +81,7 @@ TEST_CASE("away from small holes in a large flat face the size grows at the grad
     REQUIRE(top > 0);
     Vec2 uv(0, 0);
     REQUIRE(model.project_to_face(top, p, uv));
-    const SizeQuery q = size_query_for(model, bg, m.h);
+    const SizeQuery& q = *run->query;
     int hint = -1;
     return q.at(top, uv, hint);
   };
@@ -138,20 +140,25 @@ TEST_CASE("refinement splits flat background triangles before the triangle stage
   // corners to the near one's size and the edge stage carries that over the
   // face: the map asked for 205k triangles where the edge stage alone (Eq. 12)
   // asked for 27k. Split first, such triangles let the sizes grade.
-  Model model = load_model(test::model_path("impeller_laufrad.stp"));
+  // The command's stages, stopped once the model is prepared to set sizes
+  // relative to its diagonal, then run on to the smoothing, twice.
+  const RunOptions o = test::run_options("impeller_laufrad.stp");
+  const auto prepared = test::run_until(o, "prepare");
+  const Model& model = *prepared->model;
   const double diag = model.info().diagonal();
-  SizingParams p;
-  p.h_min = diag / 1e4;
-  p.h_max = diag / 20;
-  p.phi_c_deg = 30;
-  p.deviation = 3.2e-3 * diag;
   for (bool refine : {true, false}) {
+    const auto run = test::run_model(model, o, "background");
+    SizingParams& p = run->params;
+    p.h_min = diag / 1e4;
+    p.h_max = diag / 20;
+    p.phi_c_deg = 30;
+    p.deviation = 3.2e-3 * diag;
     p.refine_background = refine;
-    BackgroundMesh bg = build_background_mesh(model);
-    SizeMap m = refine_background(model, bg, p, diag);
+    test::run_on(*run, o, "initial_sizes", "smoothing");
+    const BackgroundMesh& bg = run->bg;
+    const SizeMap& m = run->sizes;
     std::vector<double> edge_only = m.h_initial;
     smooth_edges(bg, m.edge_log_beta, edge_only);
-    smooth(bg, m);
     const double n_edge = estimate_triangles(bg, edge_only, {}, model.num_faces()).total;
     const double n_both = estimate_triangles(bg, m.h, {}, model.num_faces()).total;
     INFO((refine ? "refined" : "tessellation") << ": edge stage " << n_edge << ", both stages " << n_both);
@@ -228,13 +235,21 @@ TEST_CASE("Delaunay flips keep the M6's background classified and closed, and it
   // round of splits), the smoothed map asks for fewer triangles, at default
   // settings and, far fewer, under a deviation bound of 4e-4 of the diagonal
   // (measured 0.92 and 0.74).
+  // The command's stages, with the refinement's flips left out in one run
+  // (its stage swapped for one without them).
   auto asked_refined = [&](const SizingParams& p0, bool flips) {
-    BackgroundMesh b = build_background_mesh(model);
-    SizingParams p = p0;
-    p.delaunay_flips = flips;
-    SizeMap m = refine_background(model, b, p, diag);
-    smooth(b, m);
-    return estimate_triangles(b, m.h, m.limit, model.num_faces()).total;
+    RunOptions o;
+    o.verbose = false;
+    o.sizing = p0;
+    Stages stages = until(from(all_stages(), "background"), "estimate");
+    if (!flips)
+      stages = replaced(stages, "refine_background", [](RunResult& r, const RunOptions&, const WarningSink&) {
+        refine_background(*r.model, r.bg, r.params, r.model->info().diagonal(), r.sizes, &r.report.refinement, false);
+      });
+    std::unique_ptr<RunResult> r = start_run(o);
+    r->model.emplace(model);
+    run_stages(*r, o, test::quiet(), stages);
+    return r->estimate.total;
   };
   SizingParams bounded;
   bounded.phi_c_deg = 90;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "geometry/predicates.h"
+#include "core/predicates.h"
 #include "mesher/self_intersection.h"
 #include "tests/exact_intersections.h"
 

@@ -20,9 +20,9 @@
 #include <sstream>
 #include <thread>
 
-#include "geometry/background_mesh.h"
-#include "geometry/model.h"
-#include "geometry/occt_model.h"
+#include "background/background_mesh.h"
+#include "cad/model.h"
+#include "cad/occt_model.h"
 #include "sizing/size_query.h"
 
 using namespace sizemesh;

@@ -22,13 +22,14 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "geometry/occt_model.h"
+#include "cad/occt_model.h"
 #include "sizing/initial_sizes.h"
 #include "sizing/lp_smooth.h"
 #include "sizing/proximity_size.h"
 #include "sizing/refine_background.h"
 #include "sizing/smooth.h"
 #include "tests/cli_runner.h"
+#include "tests/stage_runs.h"
 #include "tests/test_models.h"
 
 using namespace sizemesh;
@@ -428,10 +429,9 @@ TEST_CASE("two parallel slabs close together get gap / mu_d in the slot by defau
 TEST_CASE("smoothed map meets the edge and triangle bounds on every shared model, lowering only, never below h_min") {
   for (const auto& sm : test::shared_models()) {
     SECTION(sm.file) {
-      Model model = load_model(test::model_path(sm.file));
-      BackgroundMesh bg = build_background_mesh(model);
-      SizeMap m = refine_background(model, bg, SizingParams{}, model.info().diagonal());  // as the pipeline does
-      smooth(bg, m);
+      const auto run = test::run_until(test::run_options(sm.file), "smoothing");  // the command's stages
+      const BackgroundMesh& bg = run->bg;
+      const SizeMap& m = run->sizes;
       const GradationCheck c = check_gradation(bg, m);
       CHECK(c.max_edge_ratio <= 1 + 1e-9);
       CHECK(c.max_triangle_ratio <= 1 + 1e-9);

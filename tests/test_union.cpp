@@ -23,9 +23,9 @@
 #include <set>
 #include <thread>
 
-#include "geometry/child_process.h"
-#include "geometry/iges_layout.h"
-#include "geometry/model.h"
+#include "core/child_process.h"
+#include "cad/iges_layout.h"
+#include "cad/model.h"
 #include "tests/brep_file.h"
 #include "tests/cli_runner.h"
 #include "tests/temp_dir.h"

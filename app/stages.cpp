@@ -1,0 +1,217 @@
+// The stages of a run and the list that runs them (app/stages.h).
+#include "app/stages.h"
+
+#include <algorithm>
+#include <iostream>
+#include <unordered_map>
+
+#include "app/run_warnings.h"
+#include "io/sizing_report.h"
+#include "mesher/cut_faces.h"
+#include "mesher/mesh_surface.h"
+#include "mesher/mesh_union.h"
+#include "mesher/quality.h"
+#include "mesher/target_sizes.h"
+#include "sizing/initial_sizes.h"
+#include "sizing/options.h"
+#include "sizing/refine_background.h"
+#include "sizing/size_query.h"
+
+namespace sizemesh {
+namespace {
+
+// The far field and the symmetry plane grade up to their own size, along
+// background edges only (sizing/params.h).
+void size_domain_faces(const Model& model, SizingParams& params) {
+  const FlowDomain& domain = model.info().domain;
+  if (!(domain.element_size > 0)) return;
+  for (int f = 1; f <= model.num_faces(); ++f)
+    if (model.boundary(f) != Boundary::Wall) {
+      params.face_h_max[f] = domain.element_size;
+      params.edge_graded_faces.insert(f);
+    }
+}
+
+void load(RunResult& r, const RunOptions& o, const WarningSink&) { r.cad.emplace(read_cad(o.input, o.load)); }
+
+void prepare(RunResult& r, const RunOptions& o, const WarningSink& warn) {
+  {
+    const auto hard_stop = preparation_hard_stop(*r.cad, o);
+    r.model.emplace(prepare_model(*r.cad, o.load));
+  }
+  r.cad.reset();
+  const Model& model = *r.model;
+  const ModelInfo& info = model.info();
+  if (const int a = info.preparation.half_model_axis; a >= 0 && info.domain.symmetry_axis != a)
+    warn(std::string("a half model, open on the plane ") + static_cast<char>('x' + a) +
+         " = 0: its mesh has boundary edges there; --symmetry " + static_cast<char>('x' + a) +
+         " with a far field closes it");
+  warn_left_out(info.preparation.left_out, " is a flat open disk", " are flat open disks",
+                " a body passes through (actuator disks)", warn);
+  warn_left_out(info.preparation.internal_sheets, " is an open sheet", " are open sheets",
+                " inside a body (an internal plane)", warn);
+  std::vector<int> source_face(model.num_faces());
+  for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
+  remap_face_ids(r.params, source_face, info.sewn_faces);
+  size_domain_faces(model, r.params);
+  if (!info.domain.farfield.empty() && info.domain.inside_points.empty())
+    warn("no closed solid of the body was found inside the far field: a volume mesher cannot tell the body's "
+         "inside from the fluid around it (see --info for free curves)");
+  for (const auto& line : info.read_repairs) warn(line);
+  if (info.entities_failed > 0)
+    warn(std::to_string(info.entities_failed) + " entities could not be read and are left out of the mesh; first: " +
+         info.first_failure);
+}
+
+void background(RunResult& r, const RunOptions& o, const WarningSink&) {
+  r.bg = build_background_mesh(*r.model, o.tessellation);
+}
+
+void initial(RunResult& r, const RunOptions&, const WarningSink&) {
+  r.sizes = initial_sizes(*r.model, r.bg, r.params, r.model->info().diagonal());
+}
+
+void refine(RunResult& r, const RunOptions&, const WarningSink&) {
+  refine_background(*r.model, r.bg, r.params, r.model->info().diagonal(), r.sizes, &r.report.refinement);
+}
+
+void smoothing(RunResult& r, const RunOptions& o, const WarningSink&) {
+  r.report.smoothing = smooth(r.bg, r.sizes, o.edge_solver);
+}
+
+void estimate(RunResult& r, const RunOptions& o, const WarningSink&) {
+  const Model& model = *r.model;
+  RunReport& report = r.report;
+  r.estimate = estimate_triangles(r.bg, r.sizes.h, r.sizes.limit, model.num_faces());
+  report.estimated_triangles = r.estimate.total;
+  report.model = &model;
+  report.background_triangles = r.bg.num_triangles();
+  report.background_vertices = r.bg.num_vertices();
+  report.sizes = &r.sizes;
+  if (!o.verbose) return;
+  std::cout << "model: " << model.info().faces << " faces, " << model.info().curves << " curves; background mesh "
+            << r.bg.num_triangles() << " triangles, " << r.bg.num_vertices() << " vertices ("
+            << report.refinement.vertices_before << " from the tessellation, " << report.refinement.edges_split
+            << " edges split in " << report.refinement.rounds << " rounds, " << report.refinement.flips
+            << " edges flipped)\n";
+  print_sizing_summary(r.bg, r.sizes, report.smoothing, std::cout);
+  std::cout << "estimate: about " << static_cast<long long>(r.estimate.total + 0.5) << " triangles\n";
+}
+
+void size_query(RunResult& r, const RunOptions&, const WarningSink&) {
+  check_triangle_budget(r.estimate, r.params.max_triangles, r.sizes);
+  const Model& model = *r.model;
+  r.query.emplace(size_query_for(model, r.bg, r.sizes.h));
+  r.query->set_accuracy(accuracy_rules(r.params, r.sizes.h_min, model.num_faces()));
+}
+
+MeshOptions meshing_options(RunResult& r, const RunOptions& o) {
+  MeshOptions meshing = o.meshing;
+  meshing.expected_triangles = r.estimate.per_face;
+  meshing.on_face_done = [&r](int done, int total) { r.clock.faces(done, total); };
+  return meshing;
+}
+
+void meshing(RunResult& r, const RunOptions& o, const WarningSink&) {
+  r.mesh = mesh_surface(*r.model, *r.query, meshing_options(r, o));
+}
+
+// The components the B-rep union left out, united with the rest as meshes
+// (mesher/mesh_union.h); what it cannot take stays apart (exit 3).
+void mesh_union(RunResult& r, const RunOptions& o, const WarningSink& warn) {
+  Model& model = *r.model;
+  const Preparation& p = model.info().preparation;
+  if (!p.not_united.empty()) {
+    const std::vector<int> left = p.not_united;
+    if (model.fluid_side() < 0) {
+      for (int k : left) model.record_mesh_union(k, "not tried inside a flow domain");
+    } else {
+      std::unordered_map<int, int> component_of;  // sewn face -> index in `left`
+      for (size_t i = 0; i < left.size(); ++i)
+        for (int f : p.components[left[i] - 1].face_ids) component_of[f] = static_cast<int>(i);
+      std::vector<std::vector<int>> parts(left.size());
+      for (int f = 1; f <= model.num_faces(); ++f)
+        if (const auto it = component_of.find(model.source_face(f)); it != component_of.end())
+          parts[it->second].push_back(f);
+      r.report.mesh_union = unite_meshes(r.mesh, model, *r.query, parts);
+      r.report.cut_faces = remesh_cut_faces(r.mesh, model, *r.query, meshing_options(r, o), r.report.mesh_union);
+      for (size_t i = 0; i < left.size(); ++i) model.record_mesh_union(left[i], r.report.mesh_union.failures[i]);
+    }
+  }
+  warn_not_united(model.info().preparation, warn);
+}
+
+void quality(RunResult& r, const RunOptions&, const WarningSink& warn) {
+  const Model& model = *r.model;
+  r.report.queries = r.query->stats();
+  r.report.mesh = &r.mesh;
+  r.report.quality = mesh_quality(r.mesh, model, *r.query);
+  r.target = target_sizes(r.mesh, *r.query);
+  measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
+  for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
+  warn_local_intersections(r.report.quality, warn);
+  warn_crossings(r.report.quality, model.info().preparation, warn);
+  warn_open(r.report.quality, model.info().preparation, !r.mesh.failures.empty(), warn);
+  warn_h_min(r.report, r.sizes.h_min, warn);
+}
+
+Stages::iterator find(Stages& stages, const std::string& name) {
+  const auto it = std::find_if(stages.begin(), stages.end(), [&](const Stage& s) { return s.name == name; });
+  if (it == stages.end()) throw Error("no stage named '" + name + "' in this run");
+  return it;
+}
+
+}  // namespace
+
+Stages sizing_stages() {
+  return {{"load", load},           {"prepare", prepare},
+          {"background", background}, {"initial_sizes", initial},
+          {"refine_background", refine}, {"smoothing", smoothing},
+          {"estimate", estimate}};
+}
+
+Stages meshing_stages() {
+  return {{"size_query", size_query}, {"meshing", meshing}, {"mesh_union", mesh_union}, {"quality", quality}};
+}
+
+Stages all_stages() {
+  Stages s = sizing_stages();
+  for (Stage& m : meshing_stages()) s.push_back(std::move(m));
+  return s;
+}
+
+Stages until(Stages stages, const std::string& last) {
+  stages.erase(find(stages, last) + 1, stages.end());
+  return stages;
+}
+
+Stages from(Stages stages, const std::string& first) {
+  stages.erase(stages.begin(), find(stages, first));
+  return stages;
+}
+
+Stages replaced(Stages stages, const std::string& name, Stage::Step step) {
+  find(stages, name)->step = std::move(step);
+  return stages;
+}
+
+Stages without(Stages stages, const std::string& name) {
+  stages.erase(find(stages, name));
+  return stages;
+}
+
+std::unique_ptr<RunResult> start_run(const RunOptions& o) {
+  auto r = std::make_unique<RunResult>(o.verbose);
+  r->params = o.sizing;
+  if (!o.config.empty()) apply_config(o.config, o.sizing_from_cli, r->params);
+  return r;
+}
+
+void run_stages(RunResult& r, const RunOptions& o, const WarningSink& warn, const Stages& stages) {
+  for (const Stage& s : stages) {
+    s.step(r, o, warn);
+    r.clock.lap(s.name);
+  }
+}
+
+}  // namespace sizemesh
