@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sizing/options.h"
-#include "src/cli_options.h"
+#include "app/cli_options.h"
 #include "tests/cli_runner.h"
 #include "tests/test_models.h"
 
@@ -74,15 +74,16 @@ TEST_CASE("help documents every option and version prints the version") {
                           "--angle", "--version", "--quiet"})
     CHECK(help.out.find(opt) != std::string::npos);
   // The sizing options come from one table: each is in --help and in the
-  // README's table with its config key.
-  const std::string readme = test::slurp(SIZEMESH_README);
+  // sizing table of docs/options.md with its config key.
+  const std::string options_doc = test::slurp(SIZEMESH_DOCS "/options.md");
+  REQUIRE(options_doc.find("| flag | config key | default | meaning |") != std::string::npos);
   for (const SizingOption& opt : sizing_options()) {
     INFO(opt.flag);
     CHECK(help.out.find(opt.flag) != std::string::npos);
-    CHECK(readme.find("| `" + opt.flag + "` | `" + opt.key + "` |") != std::string::npos);
+    CHECK(options_doc.find("| `" + opt.flag + "` | `" + opt.key + "` |") != std::string::npos);
   }
   CHECK(help.out.find("a flag given on the command line wins over the file") != std::string::npos);
-  // Every option the command line has (src/cli_options.cpp) is in the README.
+  // Every option the command line has (app/cli_options.cpp) is in docs/options.md.
   CLI::App app;
   RunCommandLine cl;
   add_run_options(app, cl);
@@ -90,7 +91,7 @@ TEST_CASE("help documents every option and version prints the version") {
     if (opt->get_lnames().empty()) continue;
     const std::string flag = "--" + opt->get_lnames().front();
     INFO(flag);
-    CHECK(readme.find(flag) != std::string::npos);
+    CHECK(options_doc.find(flag) != std::string::npos);
     CHECK(help.out.find(flag) != std::string::npos);
   }
   const auto version = test::run_sizemesh("--version");

@@ -1,11 +1,14 @@
-// The README's "From CAD to a volume mesh" commands, run as they stand (from
-// a copy of the repository's examples and the built binary), so that they
-// cannot go stale: TetGen, Gmsh and the CGNS checker must all accept what
-// sizemesh writes.
+// The "From CAD to a volume mesh" commands of docs/formats.md, run as they
+// stand (from a copy of the repository's examples and the built binary), so
+// that they cannot go stale: TetGen, Gmsh and the CGNS checker must all accept
+// what sizemesh writes. And the README, the front door, links every file of
+// docs/ and only files that exist.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -15,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The indented lines between the two markers of the README.
+// The indented lines between the two markers of a Markdown file.
 std::string command_block(const std::string& readme) {
   const std::string begin = "<!-- volume-mesh commands", end = "<!-- end of volume-mesh commands -->";
   const size_t a = readme.find(begin), b = readme.find(end);
@@ -30,8 +33,8 @@ std::string command_block(const std::string& readme) {
 
 }  // namespace
 
-TEST_CASE("the README's commands from STEP to TetGen, Gmsh and CGNS volume inputs run as written", "[readme]") {
-  const std::string block = command_block(sizemesh::test::slurp(SIZEMESH_README));
+TEST_CASE("the documented commands from STEP to TetGen, Gmsh and CGNS volume inputs run as written", "[readme]") {
+  const std::string block = command_block(sizemesh::test::slurp(SIZEMESH_DOCS "/formats.md"));
   REQUIRE(block.find("tetgen") != std::string::npos);
   REQUIRE(block.find("gmsh") != std::string::npos);
   REQUIRE(block.find("cgnscheck") != std::string::npos);
@@ -55,4 +58,29 @@ TEST_CASE("the README's commands from STEP to TetGen, Gmsh and CGNS volume input
     CHECK(fs::file_size(dir / out) > 1000);
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("the README links every file of docs/, each link resolves, and it stays short", "[readme]") {
+  const std::string readme = sizemesh::test::slurp(SIZEMESH_README);
+  REQUIRE(!readme.empty());
+  CHECK(std::count(readme.begin(), readme.end(), '\n') <= 170);
+  // Every Markdown file of docs/ is linked from the README ...
+  std::set<std::string> docs;
+  for (const auto& entry : fs::directory_iterator(SIZEMESH_DOCS))
+    if (entry.path().extension() == ".md") docs.insert(entry.path().filename().string());
+  CHECK(docs.count("options.md") == 1);
+  CHECK(docs.count("formats.md") == 1);
+  for (const std::string& name : docs) {
+    INFO(name);
+    CHECK(readme.find("](docs/" + name + ")") != std::string::npos);
+  }
+  // ... and every docs/*.md the README links exists.
+  const std::string link = "](docs/";
+  for (size_t at = readme.find(link); at != std::string::npos; at = readme.find(link, at + 1)) {
+    const size_t end = readme.find(')', at);
+    const std::string target = readme.substr(at + 2, end - at - 2);
+    if (target.size() < 3 || target.compare(target.size() - 3, 3, ".md") != 0) continue;  // the picture
+    INFO(target);
+    CHECK(fs::exists(fs::path(SIZEMESH_DOCS) / target.substr(5)));
+  }
 }
