@@ -111,7 +111,7 @@ TEST_CASE("info reports unit, bounding box, counts and free curves") {
   CHECK(r.out.find("10 free curves, area 343.2") != std::string::npos);
   CHECK(r.out.find("-> solid (6 faces taken out)") != std::string::npos);
   CHECK(r.out.find("-> solid, one body with component 2 (faces back to back)\n") != std::string::npos);
-  // --info describes the file: the repair, not the union (tests/test_union.cpp).
+  // --info describes the file: the repair, not the union (tests/test_union_routes.cpp).
   CHECK(r.out.find("union:       not run: --info describes the file, a mesh run unites its components; 8 duplicate "
                    "and 5 internal faces removed; 0 split at folds or parameter jumps; 0 flat faces put on their plane; "
                    "69 faces before, 56 after") !=

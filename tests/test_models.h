@@ -37,7 +37,7 @@ inline const std::vector<SharedModel>& shared_models() {
 
 // The aircraft the union is developed against (issue: every aircraft file to
 // one clean wetted surface). They do not all give one closed surface yet;
-// tests/test_union.cpp holds each to what it does today: it ends, and names
+// tests/test_union_*.cpp hold each to what it does today: it ends, and names
 // what it could not unite.
 inline const std::vector<std::string>& union_corpus() {
   static const std::vector<std::string> files = {"transport_wbnp_openvsp.stp", "tbw_sugar_openvsp.stp",

@@ -23,7 +23,7 @@
 
 using namespace sizemesh;
 
-TEST_CASE("refined backgrounds stay classified, on the CAD and watertight (test_sizing checks their smoothed sizes)") {
+TEST_CASE("refined backgrounds stay classified, on the CAD and watertight (test_size_smoothing checks their smoothed sizes)") {
   for (const auto& sm : test::shared_models()) {
     SECTION(sm.file) {
       Model model = load_model(test::model_path(sm.file));
