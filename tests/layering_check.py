@@ -10,7 +10,7 @@ Checks, over every .h/.cpp file of the stage folders:
   * the mesher includes nothing from sizing/: it sees the size field of
     core/size_field.h alone;
   * only cad/ includes OpenCASCADE headers (*.hxx);
-  * no file is over 400 lines;
+  * no file is over 400 lines (nor any of tests/ and bench/);
   * every stage folder has a README.md saying what it owns.
 Prints each violation on one line and exits 1 if there is any.
 """
@@ -41,8 +41,9 @@ def main():
                 files += 1
                 with open(path, encoding="utf-8") as f:
                     lines = f.read().split("\n")
-                if len(lines) - (lines[-1] == "") > MAX_LINES:
-                    problems.append(f"{rel}: {len(lines)} lines, over {MAX_LINES}")
+                count = len(lines) - (lines[-1] == "")
+                if count > MAX_LINES:
+                    problems.append(f"{rel}: {count} lines, over {MAX_LINES}")
                 for n, line in enumerate(lines, 1):
                     m = INCLUDE.match(line)
                     if not m:
@@ -58,9 +59,18 @@ def main():
                             problems.append(f"{rel}:{n}: {folder}/ includes {target}, a later stage")
                         elif (folder, to) in FORBIDDEN:
                             problems.append(f"{rel}:{n}: {folder}/ includes {target}")
+    for folder in ("tests", "bench"):
+        base = os.path.join(root, folder)
+        for name in sorted(os.listdir(base)):
+            if name.endswith((".h", ".cpp")):
+                files += 1
+                with open(os.path.join(base, name), encoding="utf-8") as f:
+                    n = len(f.read().rstrip("\n").split("\n"))
+                if n > MAX_LINES:
+                    problems.append(f"{folder}/{name}: {n} lines, over {MAX_LINES}")
     for p in problems:
         print(p)
-    print(f"{files} files in {len(ORDER)} stage folders, {len(problems)} problems")
+    print(f"{files} files in {len(ORDER)} stage folders, tests/ and bench/, {len(problems)} problems")
     return 1 if problems or files == 0 else 0
 
 
