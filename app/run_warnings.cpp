@@ -4,26 +4,19 @@
 #include <iomanip>
 #include <sstream>
 
+#include "sizing/options.h"
+
 namespace sizemesh {
 
 void check_triangle_budget(const TriangleEstimate& e, double max_triangles, const SizeMap& h) {
   if (e.total <= max_triangles) return;
-  const char* option = "--h-min";
-  switch (e.dominant()) {
-    case Limit::HMax: option = "--h-max"; break;
-    case Limit::Curvature: option = "--phi-c or --deviation"; break;
-    case Limit::FaceProximity:
-    case Limit::CurveLength:
-    case Limit::Gap: option = "--mu-d, --no-gaps or --h-min"; break;
-    case Limit::Thickness: option = "--gap-side fluid, --mu-d or --h-min"; break;
-    case Limit::User: option = "the config's local sizes"; break;
-    case Limit::HMin: option = "--h-min"; break;
-    case Limit::FarField: option = "--farfield-h"; break;
-  }
+  std::string option = remedy(e.dominant());  // sizing/options.h
+  if (option.empty()) option = "--farfield-h";  // the far field's element size, a flow-domain option
   std::ostringstream msg;
-  msg << std::setprecision(3) << "the size map asks for about " << e.total << " triangles, more than --max-triangles "
+  msg << std::setprecision(3) << "the size map asks for about " << e.total << " triangles, more than "
+      << flag_of("max_triangles") << " "
       << max_triangles << " (h_min " << h.h_min << ", h_max " << h.h_max << "); most come from sizes set by "
-      << limit_name(e.dominant()) << ": raise " << option << ", or --max-triangles";
+      << limit_name(e.dominant()) << ": raise " << option << ", or " << flag_of("max_triangles");
   throw Error(msg.str());
 }
 

@@ -20,18 +20,6 @@
 namespace sizemesh {
 namespace {
 
-// The far field and the symmetry plane grade up to their own size, along
-// background edges only (sizing/params.h).
-void size_domain_faces(const Model& model, SizingParams& params) {
-  const FlowDomain& domain = model.info().domain;
-  if (!(domain.element_size > 0)) return;
-  for (int f = 1; f <= model.num_faces(); ++f)
-    if (model.boundary(f) != Boundary::Wall) {
-      params.face_h_max[f] = domain.element_size;
-      params.edge_graded_faces.insert(f);
-    }
-}
-
 void load(RunResult& r, const RunOptions& o, const WarningSink&) { r.cad.emplace(read_cad(o.input, o.load)); }
 
 void prepare(RunResult& r, const RunOptions& o, const WarningSink& warn) {
@@ -53,7 +41,10 @@ void prepare(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   std::vector<int> source_face(model.num_faces());
   for (int f = 1; f <= model.num_faces(); ++f) source_face[f - 1] = model.source_face(f);
   remap_face_ids(r.params, source_face, info.sewn_faces);
-  size_domain_faces(model, r.params);
+  std::vector<int> domain_faces;  // the far field and the symmetry plane
+  for (int f = 1; f <= model.num_faces(); ++f)
+    if (model.boundary(f) != Boundary::Wall) domain_faces.push_back(f);
+  size_domain_faces(r.params, domain_faces, info.domain.element_size);
   if (!info.domain.farfield.empty() && info.domain.inside_points.empty())
     warn("no closed solid of the body was found inside the far field: a volume mesher cannot tell the body's "
          "inside from the fluid around it (see --info for free curves)");

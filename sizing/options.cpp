@@ -29,6 +29,27 @@ const std::vector<SizingOption>& sizing_options() {
   return table;
 }
 
+const std::string& flag_of(const std::string& key) {
+  for (const SizingOption& o : sizing_options())
+    if (o.key == key) return o.flag;
+  throw Error("no sizing option '" + key + "'");
+}
+
+std::string remedy(Limit l) {
+  switch (l) {
+    case Limit::HMax: return flag_of("h_max");
+    case Limit::Curvature: return flag_of("phi_c") + " or " + flag_of("deviation");
+    case Limit::FaceProximity:
+    case Limit::CurveLength:
+    case Limit::Gap: return flag_of("mu_d") + ", " + flag_of("local_proximity") + " or " + flag_of("h_min");
+    case Limit::Thickness: return flag_of("gap_side") + " fluid, " + flag_of("mu_d") + " or " + flag_of("h_min");
+    case Limit::User: return "the config's local sizes";
+    case Limit::HMin: return flag_of("h_min");
+    case Limit::FarField: return "";
+  }
+  return flag_of("h_min");
+}
+
 void apply_config(const std::string& path, const std::set<std::string>& from_cli, SizingParams& p) {
   const SizingParams given = p;
   read_config(path, p);

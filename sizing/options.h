@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sizing/params.h"
+#include "sizing/size_map.h"
 
 namespace sizemesh {
 
@@ -27,6 +28,15 @@ struct SizingOption {
 };
 
 const std::vector<SizingOption>& sizing_options();
+
+// The command-line flag of the sizing option with this config key (throws
+// Error on a key the table does not have).
+const std::string& flag_of(const std::string& key);
+
+// The options to change when sizes set by `l` ask for too many triangles,
+// named by their flags ("--phi-c or --deviation"); empty for the far field's
+// size, which is not a sizing option.
+std::string remedy(Limit l);
 
 // Reads the JSON config at `path` into p; the options named in `from_cli`
 // (keys) keep the values p had: a flag on the command line wins over the file.

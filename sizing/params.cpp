@@ -182,6 +182,14 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("face_size")) read_map(j["face_size"], "face_size", p.face_size, user_size);
 }
 
+void size_domain_faces(SizingParams& p, const std::vector<int>& domain_faces, double element_size) {
+  if (!(element_size > 0)) return;
+  for (int f : domain_faces) {
+    p.face_h_max[f] = element_size;
+    p.edge_graded_faces.insert(f);
+  }
+}
+
 AccuracyRules accuracy_rules(const SizingParams& p, double h_min, int faces) {
   AccuracyRules r;
   r.deviation = p.deviation;

@@ -75,6 +75,11 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
 // entries. Throws Error on ids outside 1..sewn_faces.
 void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_faces);
 
+// The far field and the symmetry plane (`domain_faces`) grade up to their own
+// size, `element_size`, along background edges only (face_h_max,
+// edge_graded_faces); nothing when element_size is not positive.
+void size_domain_faces(SizingParams& p, const std::vector<int>& domain_faces, double element_size);
+
 // The accuracy rules a size map built from p hands the mesher (SizeField::
 // set_accuracy) for a model of `faces` faces whose map has the floor h_min:
 // p's deviation bound, phi_c per face in radians (the turn an inner edge may

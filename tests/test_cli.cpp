@@ -65,6 +65,10 @@ TEST_CASE("bad input gives one clear error line and a non-zero exit") {
   expect_one_error(test::run_sizemesh(wing + " --deflection -1"), "positive");
   expect_one_error(test::run_sizemesh(wing + " --no-such-option"), "no-such-option");
   expect_one_error(test::run_sizemesh(""), "model is required");
+  // A map asking for too many triangles names the option that drives them,
+  // by the flag the option table gives it.
+  expect_one_error(test::run_sizemesh(wing + " -o x.vtu --max-triangles 100 --h-min 0.0001 --h-max 0.001"),
+                   "most come from sizes set by h_max: raise --h-max, or --max-triangles");
 }
 
 TEST_CASE("help documents every option and version prints the version") {
