@@ -2,8 +2,6 @@
 // run() around the stage list of app/stages.h.
 #pragma once
 
-#include <algorithm>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <set>

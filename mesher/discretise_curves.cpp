@@ -149,7 +149,7 @@ CurveMesh discretise_curves(const Geometry& g, const SizeField& h) {
 
   // Sharp corners (mesher/sharp_corners.h): long first segments; the rest of
   // such a curve is counted again (Eq. 1a) between them.
-  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled, h.accuracy().deviation);
+  const std::vector<std::array<double, 2>> leads = corner_leads(g, loops, sampled, h);
   for (int c = 1; c <= nc; ++c) {
     const auto& lead = leads[c];
     const CurveSamples& s = sampled[c];

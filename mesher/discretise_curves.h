@@ -40,7 +40,7 @@ struct CurveMesh {
 // and the curves of a sharp corner start with one long segment
 // (mesher/sharp_corners.h).
 // Degenerate curves (poles) get none.
-// The size field's deviation bound (h.accuracy(); 0: none) is passed to corner_leads.
+// The size field's deviation bound (h.accuracy(); 0: none) bounds corner_leads' first segments.
 CurveMesh discretise_curves(const Geometry& g, const SizeField& h);
 
 }  // namespace sizemesh

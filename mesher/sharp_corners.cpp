@@ -6,7 +6,6 @@
 #include <map>
 #include <vector>
 
-#include "core/size_field.h"
 
 namespace sizemesh {
 namespace {
@@ -55,11 +54,11 @@ class Leads {
     return d.norm() > 0 && std::isfinite(d.norm()) ? Vec3(d.normalized()) : Vec3::Zero();
   }
 
-  // The chord of height `deviation` on `face` at the point where l ends
-  // (core/size_field.h): on a curved face a first segment longer than
-  // this leaves the corner's triangle farther off the surface than asked.
-  // No bound where the face is flat or its curvature cannot be evaluated.
-  double deviation_cap(Link l, int face, double deviation) const {
+  // The chord within the field's deviation bound on `face` at the point where l ends
+  // (SizeField::deviation_chord): on a curved face a first segment longer
+  // than this leaves the corner's triangle farther off the surface than
+  // asked. No bound where the face is flat or its curvature cannot be evaluated.
+  double deviation_cap(Link l, int face, const SizeField& field) const {
     const CurveSamples& s = s_[l.curve];
     Vec2 uv;
     try {
@@ -67,8 +66,7 @@ class Leads {
     } catch (const Error&) {
       return std::numeric_limits<double>::infinity();
     }
-    const double cap = face_deviation_size(g_, face, uv, deviation);
-    return std::isnan(cap) ? std::numeric_limits<double>::infinity() : cap;
+    return field.deviation_chord(g_, face, uv);
   }
 
   // Longest first segment: kLeadShare of the curve, turning at most
@@ -130,7 +128,8 @@ class Leads {
 }  // namespace
 
 std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::vector<std::vector<FaceLoop>>& loops,
-                                                const std::vector<CurveSamples>& samples, double deviation) {
+                                                const std::vector<CurveSamples>& samples, const SizeField& field) {
+  const double deviation = field.accuracy().deviation;
   Leads leads(g, samples);
   // Faces on each curve: under a deviation bound a first segment bounds all of them.
   std::vector<std::vector<int>> curve_faces(deviation > 0 ? samples.size() : 0);
@@ -166,7 +165,7 @@ std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::ve
         c.h = std::min(c.side[0].end == 0 ? s0.h0 : s0.h1, c.side[1].end == 0 ? s1.h0 : s1.h1);
         if (deviation > 0)
           for (const Link& l : c.side)
-            for (int face : curve_faces[l.curve]) c.most = std::min(c.most, leads.deviation_cap(l, face, deviation));
+            for (int face : curve_faces[l.curve]) c.most = std::min(c.most, leads.deviation_cap(l, face, field));
         if (std::isfinite(c.h) && c.h > 0) corners.push_back(c);
       }
     }

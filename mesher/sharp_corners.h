@@ -17,10 +17,10 @@
 //   g        the B-rep (loops, curve tangents)
 //   loops    #faces+1 boundary loops of every face
 //   samples  #curves+1 sampled curves (empty where a curve could not be sampled)
-//   deviation  the size map's chord-height bound (0: none): a first segment is
-//            at most the chord of that height on the face at the corner
-//            (a long lead on a curved face would be where the mesh lies
-//            farthest off the CAD)
+//   field    the size field: under its deviation bound (accuracy(); 0:
+//            none) a first segment is at most the chord of that height on
+//            the face at the corner (SizeField::deviation_chord; a long lead
+//            on a curved face would be where the mesh lies farthest off the CAD)
 // Output, per curve: the arc length of its first segment at t0 and at t1
 // (0: the ordinary discretisation there).
 #pragma once
@@ -29,11 +29,12 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "core/size_field.h"
 #include "mesher/curve_samples.h"
 
 namespace sizemesh {
 
 std::vector<std::array<double, 2>> corner_leads(const Geometry& g, const std::vector<std::vector<FaceLoop>>& loops,
-                                                const std::vector<CurveSamples>& samples, double deviation = 0);
+                                                const std::vector<CurveSamples>& samples, const SizeField& field);
 
 }  // namespace sizemesh
