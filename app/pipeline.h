@@ -20,6 +20,7 @@
 #include "sizing/size_query.h"
 #include "sizing/smooth.h"
 #include "sizing/triangle_estimate.h"
+#include "topology/topology.h"
 
 namespace sizemesh {
 
@@ -66,7 +67,12 @@ struct RunResult {
   std::vector<double> target;    // per mesh node: the size map's size there
   std::vector<std::string> warnings;  // one line each, without the "sizemesh: warning: " prefix
   bool meshed() const { return report.mesh != nullptr; }
-  MeshLabels labels() const { return label_faces(*model); }
+  Topology topology;             // feature and virtual curves, composite faces
+  MeshLabels labels() const {
+    MeshLabels l = label_faces(*model);
+    l.face_composite = topology.face_composite;
+    return l;
+  }
   // Partial: a face not meshed, components left out of the union (their
   // meshes overlap the rest: not one closed surface), or, where one surface
   // was asked for, triangles that cross, or a surface not closed.

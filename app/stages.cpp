@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <iostream>
+#include <map>
+#include <set>
 #include <unordered_map>
 
 #include "app/run_warnings.h"
 #include "io/sizing_report.h"
 #include "mesher/cut_faces.h"
 #include "mesher/mesh_surface.h"
+#include "mesher/composite_remesh.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
 #include "mesher/target_sizes.h"
@@ -52,6 +55,34 @@ void prepare(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   if (info.entities_failed > 0)
     warn(std::to_string(info.entities_failed) + " entities could not be read and are left out of the mesh; first: " +
          info.first_failure);
+}
+
+// Feature and virtual curves (topology/): faces of different components,
+// boundary kinds or user settings never join one composite face; curves with
+// their own settings stay.
+void topology(RunResult& r, const RunOptions&, const WarningSink&) {
+  const Model& model = *r.model;
+  const MeshLabels labels = label_faces(model);
+  const SizingParams& p = r.params;
+  std::map<std::string, int> class_id;
+  std::vector<int> face_class(model.num_faces());
+  for (int f = 1; f <= model.num_faces(); ++f) {
+    const MeshLabels::Marker& m = labels.markers.at(labels.marker_of(f));
+    std::string key = m.component + "/" + std::to_string(static_cast<int>(m.kind));
+    if (p.face_size.count(f) || p.face_phi_c_deg.count(f) || p.face_mu_d.count(f) || p.face_beta.count(f))
+      key += "/face " + std::to_string(f);
+    face_class[f - 1] = class_id.emplace(key, static_cast<int>(class_id.size())).first->second;
+  }
+  std::set<int> kept;
+  for (const auto& e : p.curve_size) kept.insert(e.first);
+  for (const auto& e : p.curve_phi_c_deg) kept.insert(e.first);
+  r.topology = build_topology(model, face_class, kept, p.feature_angle_deg, p.composite);
+  r.report.topology = &r.topology;
+  if (r.topology.enabled) {
+    r.params.virtual_curve.assign(model.num_curves(), 0);
+    for (int c = 1; c <= model.num_curves(); ++c) r.params.virtual_curve[c - 1] = !r.topology.hard(c);
+    r.params.chain_length = r.topology.chain_length;
+  }
 }
 
 void background(RunResult& r, const RunOptions& o, const WarningSink&) {
@@ -132,11 +163,17 @@ void mesh_union(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   warn_not_united(model.info().preparation, warn);
 }
 
+// Composite faces meshed as one: the mesh re-meshed across virtual curves.
+void composite(RunResult& r, const RunOptions&, const WarningSink&) {
+  r.report.composite = remesh_composites(r.mesh, *r.model, *r.query, r.topology, &r.report.mesh_union.junction);
+}
+
 void quality(RunResult& r, const RunOptions&, const WarningSink& warn) {
   const Model& model = *r.model;
   r.report.queries = r.query->stats();
   r.report.mesh = &r.mesh;
-  r.report.quality = mesh_quality(r.mesh, model, *r.query);
+  const auto kept = kept_edges(r.mesh, model, r.topology);
+  r.report.quality = mesh_quality(r.mesh, model, *r.query, &kept);
   r.target = target_sizes(r.mesh, *r.query);
   measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
   for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
@@ -156,13 +193,14 @@ Stages::iterator find(Stages& stages, const std::string& name) {
 
 Stages sizing_stages() {
   return {{"load", load},           {"prepare", prepare},
-          {"background", background}, {"initial_sizes", initial},
+          {"topology", topology},     {"background", background}, {"initial_sizes", initial},
           {"refine_background", refine}, {"smoothing", smoothing},
           {"estimate", estimate}};
 }
 
 Stages meshing_stages() {
-  return {{"size_query", size_query}, {"meshing", meshing}, {"mesh_union", mesh_union}, {"quality", quality}};
+  return {{"size_query", size_query}, {"meshing", meshing}, {"mesh_union", mesh_union},
+          {"composite", composite},   {"quality", quality}};
 }
 
 Stages all_stages() {

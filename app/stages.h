@@ -7,6 +7,7 @@
 //
 //   load               read the CAD file                         cad/
 //   prepare            one wetted surface, the flow domain       cad/
+//   topology           feature curves, composite faces           topology/
 //   background         the classified background mesh (3.1)      background/
 //   initial_sizes      curvature, proximity, user sizes (3.2, 3.4) sizing/
 //   refine_background  split edges too long for a graded size    sizing/
@@ -15,6 +16,7 @@
 //   size_query         the walk-through query (4.2), accuracy    sizing/
 //   meshing            curves, fronts, optimisation (4.1)        mesher/
 //   mesh_union         components united as meshes               mesher/
+//   composite          re-mesh across virtual curves             mesher/
 //   quality            quality, target sizes, warnings           mesher/
 #pragma once
 

@@ -26,8 +26,13 @@ struct MeshLabels {
   // A point inside each body a far field surrounds: the holes a volume
   // mesher leaves empty (TetGen's hole list).
   std::vector<Vec3> holes;
+  // Composite face of mesh face f at [f - 1] (topology/); empty: each face its own.
+  std::vector<int> face_composite;
   std::string unit;  // the CAD file's length unit ("mm", "ft", ...; "unknown" when it has none)
 
+  int composite_of(int face) const {
+    return face >= 1 && face <= static_cast<int>(face_composite.size()) ? face_composite[face - 1] : face;
+  }
   int marker_of(int face) const {
     return face >= 1 && face <= static_cast<int>(face_marker.size()) ? face_marker[face - 1] : face;
   }

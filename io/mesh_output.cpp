@@ -144,11 +144,16 @@ void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels&
   if (ext == ".stl") return write_stl(path, m);
   std::vector<double> dim(m.node_dim.begin(), m.node_dim.end()), entity(m.node_entity.begin(), m.node_entity.end());
   std::vector<double> source_ids(m.tri_face.size());
-  for (size_t t = 0; t < m.tri_face.size(); ++t) source_ids[t] = labels.marker_of(m.tri_face[t]);
+  std::vector<double> composite_ids(m.tri_face.size());
+  for (size_t t = 0; t < m.tri_face.size(); ++t) {
+    source_ids[t] = labels.marker_of(m.tri_face[t]);
+    composite_ids[t] = labels.composite_of(m.tri_face[t]);
+  }
   write_vtu(path, m.xyz, m.tris,
             {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
             {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},
              {"source_face_id", source_ids},
+             {"composite_id", composite_ids},
              {"min_angle", q.min_angle},
              {"sliver", std::vector<double>(q.sliver.begin(), q.sliver.end())}});
 }

@@ -32,6 +32,18 @@ nlohmann::json report_json(const RunReport& r) {
                           {"brep_failure", c.brep_failure},
                           {"caps_added", c.caps_added},
                           {"faces_removed", c.faces_removed}});
+  if (r.topology && !r.topology->curve_kind.empty()) {
+    const Topology& t = *r.topology;
+    json kinds = json::object();
+    for (CurveKind k : {CurveKind::Virtual, CurveKind::Seam, CurveKind::Angle, CurveKind::Marker, CurveKind::User,
+                        CurveKind::Boundary, CurveKind::Degenerate})
+      kinds[curve_kind_name(k)] = t.count(k);
+    j["topology"] = {{"enabled", t.enabled},
+                     {"feature_angle_deg", t.feature_angle_deg},
+                     {"composite_faces", t.composites},
+                     {"composite_curves", t.composite_curves},
+                     {"curves_by_kind", kinds}};
+  }
   j["preparation"] = {{"components", components},
                       {"union_requested", prep.union_requested},
                       {"fused", prep.fused},
@@ -105,6 +117,8 @@ nlohmann::json report_json(const RunReport& r) {
                  {"narrow_face_below_12deg", q.narrow_below_12},
                  {"short_curve_below_12deg", q.short_curve_below_12},
                  {"avoidable_below_12deg", q.avoidable_below_12},
+                 {"below_12deg_at_feature_corners", q.feature_corner_below_12},
+                 {"below_12deg_elsewhere", q.below_12 - q.feature_corner_below_12},
                  {"low_quality_below_24deg", q.below_24},
                  {"low_quality_share", q.below_24 / n},
                  {"size_conformity", q.size_conformity},
@@ -152,6 +166,14 @@ nlohmann::json report_json(const RunReport& r) {
                        {"thin_edges_collapsed", r.cut_faces.thin_collapsed},
                        {"thin_edges_flipped", r.cut_faces.thin_flipped},
                        {"thin_nodes_pinched", r.cut_faces.thin_pinched}};
+    j["composite"] = {{"virtual_curve_nodes", r.composite.virtual_nodes},
+                      {"virtual_curve_nodes_left", r.composite.virtual_nodes_left},
+                      {"edges_collapsed", r.composite.collapsed},
+                      {"edges_split", r.composite.split},
+                      {"edges_flipped", r.composite.flipped},
+                      {"nodes_smoothed", r.composite.smoothed},
+                      {"nodes_slid_along_curves", r.composite.slid},
+                      {"attempts_undone_crossing", r.composite.attempts_crossing}};
     j["size_query"] = {{"queries", r.queries.queries},
                        {"mean_triangles_visited", r.queries.mean_visited()},
                        {"max_triangles_visited", r.queries.max_visited},
@@ -168,12 +190,21 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
   if (!r.mesh) return;
   const MeshQuality& q = r.quality;
   const double n = std::max(1, q.triangles);
+  if (r.topology && r.topology->enabled) {
+    const Topology& t = *r.topology;
+    out << "composite faces: " << t.composites << " over " << t.face_composite.size() << " faces; curves: "
+        << t.count(CurveKind::Virtual) << " crossed (smooth), "
+        << t.count(CurveKind::Angle) + t.count(CurveKind::Marker) + t.count(CurveKind::User) +
+               t.count(CurveKind::Boundary)
+        << " kept (" << t.count(CurveKind::Angle) << " sharp, " << t.count(CurveKind::Marker) << " between markers, "
+        << t.count(CurveKind::User) << " by the user, " << t.count(CurveKind::Boundary) << " free or non-manifold) in "
+        << t.composite_curves << " composite curves\n";
+  }
   out << "mesh: " << q.triangles << " triangles, " << q.nodes << " nodes\n"
       << std::setprecision(3) << "quality: worst min angle " << q.worst_angle << " deg; below 12 deg: " << q.below_12
-      << " (" << 100.0 * q.below_12 / n << "%; "
-      << q.forced_below_12 - q.narrow_below_12 - q.short_curve_below_12 << " forced by CAD corners, "
-      << q.narrow_below_12 << " by faces narrower than the elements, " << q.short_curve_below_12
-      << " by curves shorter than the elements; " << q.avoidable_below_12 << " avoidable), below 24 deg: " << q.below_24 << " ("
+      << " (" << 100.0 * q.below_12 / n << "%; " << q.feature_corner_below_12
+      << " at feature corners sharper than 12 deg, " << q.below_12 - q.feature_corner_below_12
+      << " elsewhere), below 24 deg: " << q.below_24 << " ("
       << 100.0 * q.below_24 / n
       << "%); size conformity " << 100.0 * q.size_conformity << "%\n"
       << "sized at h_min: " << 100.0 * r.at_h_min_share << "% of the triangles, " << 100.0 * r.at_h_min_area_share

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cad/model.h"
+#include "mesher/composite_remesh.h"
 #include "mesher/cut_faces.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
@@ -37,6 +38,8 @@ struct RunReport {
   QueryStats queries;
   MeshUnionResult mesh_union;  // components united at mesh level (none when every union was a B-rep one)
   CutFacesResult cut_faces;    // the faces that union cut, meshed again
+  const Topology* topology = nullptr;
+  CompositeRemeshResult composite;  // the mesh re-meshed across virtual curves
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
 };
 

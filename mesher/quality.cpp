@@ -1,9 +1,12 @@
 #include "mesher/quality.h"
 
+#include "mesher/feature_corners.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -26,7 +29,33 @@ struct TriangleMeasure {
   std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
 };
 
-TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeField& h, size_t t, int& hint) {
+// Each inner node's uv on its own face (node_entity), from a triangle of
+// that face at it, else (a node of a composite face whose triangles all lie
+// on neighbouring faces) the nearest point of that face; NaN where none is.
+std::vector<Vec2> own_face_uv(const SurfaceMesh& m, const Geometry& g) {
+  std::vector<Vec2> uv(m.xyz.size(), Vec2::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<char> inner(m.xyz.size(), 0);
+  for (size_t t = 0; t < m.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int n = m.tris[t][k];
+      if (m.node_dim[n] != 2) continue;
+      inner[n] = 1;
+      if (m.node_entity[n] == m.tri_face[t]) uv[n] = m.tri_uv[t][k];
+    }
+  std::vector<int> alone;
+  for (size_t n = 0; n < m.xyz.size(); ++n)
+    if (inner[n] && !uv[n].allFinite() && m.node_entity[n] >= 1 && m.node_entity[n] <= g.num_faces())
+      alone.push_back(static_cast<int>(n));
+  tbb::parallel_for(size_t(0), alone.size(), [&](size_t i) {
+    const int n = alone[i];
+    Vec2 at = Vec2::Zero();
+    if (g.nearest_on_face(m.node_entity[n], m.xyz[n], at)) uv[n] = at;
+  });
+  return uv;
+}
+
+TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeField& h, const std::vector<Vec2>& own_uv,
+                        size_t t, int& hint) {
   TriangleMeasure r;
   const auto& tr = m.tris[t];
   const Vec3 &a = m.xyz[tr[0]], &b = m.xyz[tr[1]], &c = m.xyz[tr[2]];
@@ -37,7 +66,13 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeField
   const int f = m.tri_face[t];
   const auto& uv = m.tri_uv[t];
   for (int k = 0; k < 3; ++k) {
-    const double d = (g.eval_face(f, uv[k]).p - m.xyz[tr[k]]).norm();
+    double d = (g.eval_face(f, uv[k]).p - m.xyz[tr[k]]).norm();
+    const int own = m.node_entity[tr[k]];
+    if (m.node_dim[tr[k]] == 2 && own != f && own >= 1 && own <= g.num_faces()) {
+      // A node of a composite face on another B-rep face than its
+      // triangle's: measured on its own face.
+      if (own_uv[tr[k]].allFinite()) d = (g.eval_face(own, own_uv[tr[k]]).p - m.xyz[tr[k]]).norm();
+    }
     r.node_distance = std::max(r.node_distance, d);
     if (m.node_dim[tr[k]] == 2) r.inner_node_distance = std::max(r.inner_node_distance, d);
     // Size at the edge's midpoint, looked up in the face's uv space.
@@ -252,20 +287,22 @@ bool inverted_triangle(const SurfaceMesh& m, const Geometry& g, size_t t) {
   return ns.norm() > 0 && n.dot(ns) <= 0;
 }
 
-MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h) {
+MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h,
+                         const std::unordered_set<uint64_t>* kept) {
   MeshQuality q;
   const size_t nt = m.tris.size();
   q.triangles = static_cast<int>(nt);
   q.nodes = static_cast<int>(m.xyz.size());
   q.min_angle.resize(nt);
   std::vector<TriangleMeasure> per(nt);
+  const std::vector<Vec2> own_uv = own_face_uv(m, g);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 4096), [&](const tbb::blocked_range<size_t>& range) {
     int hint = -1;
     for (size_t t = range.begin(); t != range.end(); ++t) {
       if (t > range.begin() && m.tri_face[t] != m.tri_face[t - 1]) hint = -1;  // hints are per face
       const auto& tr = m.tris[t];
       q.min_angle[t] = min_angle_deg(m.xyz[tr[0]], m.xyz[tr[1]], m.xyz[tr[2]]);
-      per[t] = measure(m, g, h, t, hint);
+      per[t] = measure(m, g, h, own_uv, t, hint);
     }
   });
   for (size_t t = 0; t < nt; ++t) {
@@ -284,6 +321,10 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFiel
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
   count_forced_slivers(m, g, per, q);
+  if (kept) {
+    const std::vector<char> corner = at_feature_corners(m, *kept, q.min_angle);
+    q.feature_corner_below_12 = static_cast<int>(std::count(corner.begin(), corner.end(), 1));
+  }
   // Edge uses, sorted by undirected edge: (min, max) << 1 | reversed, then the
   // use (triangle, side) so each group is one edge with its directions.
   std::vector<std::pair<uint64_t, uint32_t>> uses(3 * nt);

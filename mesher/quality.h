@@ -35,6 +35,7 @@
 
 #include <array>
 #include <cstdint>
+#include <unordered_set>
 #include <vector>
 
 #include "core/geometry.h"
@@ -53,6 +54,10 @@ struct MeshQuality {
   int narrow_below_12 = 0;                // of those, spanning a face narrower than h tan(12 deg)
   int short_curve_below_12 = 0;           // of those, on a segment under h tan(12 deg) of a curve shorter than h
   int avoidable_below_12 = 0;             // below_12 - forced_below_12
+  // Under 12 degrees with the smallest angle at a corner where kept edges
+  // (feature curves, junctions, free boundaries) meet at under 12 degrees:
+  // forced by the shape. The rest are the slivers a user sees.
+  int feature_corner_below_12 = 0;
   double worst_angle = 180;
   int boundary_edges = 0, nonmanifold_edges = 0, orientation_conflicts = 0;
   std::vector<int> open_faces;            // faces at boundary or non-manifold edges (first 20, ascending)
@@ -68,7 +73,10 @@ struct MeshQuality {
   double area = 0;
 };
 
-MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h);
+// kept: the edges the mesh keeps (kept_edges); without them no triangle is
+// counted at a feature corner.
+MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeField& h,
+                         const std::unordered_set<uint64_t>* kept = nullptr);
 
 // Triangle t of m is inverted: its normal and its face's surface normal at
 // its uv centroid (oriented as in the shell) point apart.

@@ -66,7 +66,7 @@ bool pair_meets(const std::array<int, 3>& ns, const std::array<int, 3>& nt, cons
 
 }  // namespace
 
-SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
+SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep, const std::vector<char>* among) {
   SelfIntersections out;
   const int nt = static_cast<int>(m.tris.size());
   if (nt < 2) return out;
@@ -89,9 +89,10 @@ SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep) {
     auto& pairs = found.local();
     for (int s = r.begin(); s != r.end(); ++s) {
       const auto& cs = bvh.corners(s);
-      if (flat[s]) continue;
+      if (flat[s] || (among && !(*among)[s])) continue;
       bvh.overlapping(bvh.box(s), [&](int t) {
-        if (t <= s || flat[t]) return;
+        // Each pair once: t after s, or t not checked on its own.
+        if (t == s || flat[t] || (t < s && !(among && !(*among)[t]))) return;
         if (!pair_meets(m.tris[s], m.tris[t], cs, bvh.corners(t))) return;
         ++mine;
         if (keep == 0) return;

@@ -24,6 +24,8 @@ struct SelfIntersections {
   std::vector<std::array<int, 2>> kept;
 };
 
-SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep);
+// among (optional): per triangle, 1 for those to check; only pairs holding
+// one of them are tested (a local change checked without the whole mesh).
+SelfIntersections find_self_intersections(const SurfaceMesh& m, size_t keep, const std::vector<char>* among = nullptr);
 
 }  // namespace sizemesh

@@ -21,6 +21,11 @@ const std::vector<SizingOption>& sizing_options() {
        "both for sheets and unsewn faces",
        0, 0, [](P& p, const std::string& w) { p.gap_side = gap_side_from(w); },
        [](const P& p) { return std::string(gap_side_name(p.gap_side)); }},
+      {"composite", "--no-composite", nullptr, &P::composite, {},
+       "mesh every B-rep face apart: no composite faces across smooth curves (narrow faces and short curves then set the mesh)"},
+      {"feature_angle", "--feature-angle", &P::feature_angle_deg, nullptr, {},
+       "a curve the surface turns across by more than this many degrees is a feature the mesh keeps; smoother ones "
+       "are crossed by composite faces", 0.0, 180.0},
       {"refine_background", "--no-refine-background", nullptr, &P::refine_background, {},
        "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow"},
       {"max_triangles", "--max-triangles", &P::max_triangles, nullptr, {},

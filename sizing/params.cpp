@@ -87,6 +87,8 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   check_beta(p.beta, "");
   const double h_min = p.resolved_h_min(diagonal), h_max = p.resolved_h_max(diagonal);
   if (!(h_min > 0) || !std::isfinite(h_min)) throw Error("h_min must be positive, got " + num(h_min));
+  if (!(p.feature_angle_deg > 0 && p.feature_angle_deg < 180))
+    throw Error("feature_angle must be in (0, 180) degrees, got " + num(p.feature_angle_deg));
   if (!(h_max > 0) || !std::isfinite(h_max)) throw Error("h_max must be positive, got " + num(h_max));
   if (h_min > h_max) throw Error("h_min (" + num(h_min) + ") is larger than h_max (" + num(h_max) + ")");
   if (!(p.deviation >= 0) || !std::isfinite(p.deviation))

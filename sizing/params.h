@@ -39,6 +39,8 @@ struct SizingParams {
   bool proximity = true;        // all proximity sizes: face width, curve length and gaps (paper 3.2.2)
   bool local_proximity = true;  // thin gaps between faces (beyond the paper)
   GapSide gap_side = GapSide::Auto;
+  bool composite = true;          // mesh faces joined across smooth curves as one (topology/)
+  double feature_angle_deg = 30;  // a curve the surface turns across by more is a feature, kept
   bool refine_background = true;  // split background edges too long to carry a graded size (beyond the paper)
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
@@ -50,6 +52,14 @@ struct SizingParams {
   // field and the symmetry plane, whose planar tessellation spans many body
   // diagonals in slivers too thin for a gradient to mean anything.
   std::set<int> edge_graded_faces;
+  // From the composite faces (topology/): curves the mesh crosses bound no
+  // face's width and set no length ([c - 1], 1 virtual); a feature curve's
+  // length is its composite curve's ([c - 1]). Empty: every curve is real.
+  std::vector<char> virtual_curve;
+  std::vector<double> chain_length;
+  bool crossed(int curve) const {
+    return curve >= 1 && curve <= static_cast<int>(virtual_curve.size()) && virtual_curve[curve - 1];
+  }
 
   // phi_c (degrees) on a face or curve: its local value, else the global one.
   double face_phi_c(int face) const { return local_or(face_phi_c_deg, face, phi_c_deg); }

@@ -5,7 +5,7 @@
 
 Checks, over every .h/.cpp file of the stage folders:
   * a file includes project headers only from its own folder or one before it
-    in core < cad < background < sizing < mesher < io < app (mesher/ops/ and
+    in core < cad < topology < background < sizing < mesher < io < app (mesher/ops/ and
     app/python/ belong to their parent folder);
   * the mesher includes nothing from sizing/: it sees the size field of
     core/size_field.h alone;
@@ -18,7 +18,7 @@ import os
 import re
 import sys
 
-ORDER = ["core", "cad", "background", "sizing", "mesher", "io", "app"]
+ORDER = ["core", "cad", "topology", "background", "sizing", "mesher", "io", "app"]
 FORBIDDEN = {("mesher", "sizing")}  # (from, to) allowed by the order but not wanted
 MAX_LINES = 400
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')

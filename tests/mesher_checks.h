@@ -36,6 +36,16 @@ inline double cad_area(const Geometry& g) {
   return a;
 }
 
+// How far x lies off face f's surface, x a point of a triangle of f at
+// (about) uv there: the distance to the surface point at uv, or to the
+// nearest one Newton finds from it where that is nearer. A triangle of a
+// composite face may have corners on a neighbouring face, whose uv on f is
+// only the nearest point inside f.
+inline double off_surface(const Geometry& g, int f, Vec2 uv, const Vec3& x) {
+  const double at_uv = (g.eval_face(f, uv).p - x).norm();
+  return g.project_to_face(f, x, uv) ? std::min(at_uv, (g.eval_face(f, uv).p - x).norm()) : at_uv;
+}
+
 // Every property the mesher promises for a closed solid.
 inline void require_valid_closed(const Geometry& g, const SurfaceMesh& m, const MeshQuality& q, double diag,
                                  bool closed = true, const test::SharedModel& known = {}) {

@@ -36,7 +36,7 @@ inline std::unique_ptr<RunResult> run_model(const Model& model, const RunOptions
                                             const std::string& last = "quality") {
   std::unique_ptr<RunResult> r = start_run(o);
   r->model.emplace(model);
-  run_stages(*r, o, quiet(), until(from(all_stages(), "background"), last));
+  run_stages(*r, o, quiet(), until(from(all_stages(), "topology"), last));
   return r;
 }
 
