@@ -71,6 +71,18 @@ void warn_h_min(const RunReport& r, double h_min, const WarningSink& warn) {
   warn(msg.str());
 }
 
+void warn_faces_without_background(const BackgroundMesh& bg, const WarningSink& warn) {
+  if (bg.faces_without_patch.empty()) return;
+  std::ostringstream msg;
+  msg << (bg.faces_without_patch.size() == 1 ? "face " : "faces ");
+  for (size_t i = 0; i < bg.faces_without_patch.size() && i < 10; ++i)
+    msg << (i ? ", " : "") << bg.faces_without_patch[i];
+  if (bg.faces_without_patch.size() > 10) msg << " and " << bg.faces_without_patch.size() - 10 << " more";
+  msg << (bg.faces_without_patch.size() == 1 ? " has" : " have")
+      << " no background mesh (the B-rep tessellation failed there): their sizes are taken from the nearest other face";
+  warn(msg.str());
+}
+
 void warn_not_united(const Preparation& p, const WarningSink& warn) {
   if (p.not_united.empty()) return;
   std::ostringstream msg;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "background/background_mesh.h"
 #include "cad/model.h"
 #include "io/report.h"
 #include "mesher/quality.h"
@@ -45,6 +46,9 @@ void warn_open(const MeshQuality& q, const Preparation& p, bool faces_failed, co
 void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r);
 // One warning line when h_min sets more than 5% of the triangles.
 void warn_h_min(const RunReport& r, double h_min, const WarningSink& warn);
+// Faces the B-rep tessellation left without a background mesh: their sizes
+// are the nearest other face's.
+void warn_faces_without_background(const BackgroundMesh& bg, const WarningSink& warn);
 // One line naming the components the union left out (the run ends with exit 3).
 void warn_not_united(const Preparation& p, const WarningSink& warn);
 // One line naming the open components left out of the wetted surface,

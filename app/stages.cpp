@@ -85,8 +85,9 @@ void topology(RunResult& r, const RunOptions&, const WarningSink&) {
   }
 }
 
-void background(RunResult& r, const RunOptions& o, const WarningSink&) {
+void background(RunResult& r, const RunOptions& o, const WarningSink& warn) {
   r.bg = build_background_mesh(*r.model, o.tessellation);
+  warn_faces_without_background(r.bg, warn);
 }
 
 void initial(RunResult& r, const RunOptions&, const WarningSink&) {

@@ -108,7 +108,10 @@ class Builder {
     FacePatch& patch = bg_.patches[f - 1];
     patch.face = f;
     const FaceTessellation& ft = tess_.faces[f - 1];
-    if (ft.tris.empty()) return;
+    if (ft.tris.empty()) {
+      if (g_.face_area(f) > 0) bg_.faces_without_patch.push_back(f);
+      return;
+    }
     const int n = static_cast<int>(ft.xyz.size());
     std::vector<int> local_to_global(n, -1);
     for (const auto& use : ft.curves) map_curve_nodes(ft, use, local_to_global);

@@ -45,6 +45,9 @@ struct BackgroundMesh {
   std::vector<std::array<int, 3>> tri_edges;  // #T edge ids of triangle sides (k, k+1)
   // Per face (index face id - 1)
   std::vector<FacePatch> patches;
+  // Faces of positive area the tessellation gave no triangles: their patch is
+  // empty and a size query there takes the nearest other face's size.
+  std::vector<int> faces_without_patch;
   // Vertex -> (face, local vertex) uses, CSR: uses of v are [use_start[v], use_start[v+1])
   std::vector<int> use_start;
   std::vector<int> use_face, use_local;

@@ -40,7 +40,10 @@ struct BackgroundOptions {
 
 // Tessellates the model with BRepMesh: the far field at ten times the
 // deflection relative to its own size, the rest relative to the model's
-// bounding-box diagonal. Throws Error on bad options or a failed tessellation.
+// bounding-box diagonal. A curve whose discretisation OCCT fails on (a knot
+// span standing still) is discretised again over the spans where it moves,
+// so the faces along it are meshed too. Throws Error on bad options or a
+// failed tessellation.
 Tessellation tessellate(const Model& model, const BackgroundOptions& options);
 
 }  // namespace sizemesh
