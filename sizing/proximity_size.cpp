@@ -50,7 +50,7 @@ double elements_across(const Geometry& g, const BackgroundMesh& bg, const Sizing
 // Seams and pole edges are no boundary. A crossing on a curve that meets the
 // vertex's own (other) curve at a point nearer than 10 widths is a corner
 // closing, not a thin region, and is passed over. Results: (global vertex, width).
-void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& patch,
+void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& patch, const SizingParams& p,
                  const std::unordered_map<uint64_t, int>& edge_of, std::vector<std::pair<int, double>>& out) {
   struct BEdge {
     int a, b, curve;  // local vertices (interior on the left going a -> b), curve id
@@ -64,7 +64,9 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
       const int ga = patch.vertex[a], gb = patch.vertex[b];
       if (ga == gb) continue;  // collapsed onto a pole
       auto it = edge_of.find(edge_key(ga, gb));
-      border.push_back({a, b, it == edge_of.end() ? 0 : bg.edge_curve[it->second]});
+      const int curve = it == edge_of.end() ? 0 : bg.edge_curve[it->second];
+      if (p.crossed(curve)) continue;  // inside a composite face: no border
+      border.push_back({a, b, curve});
       ++seen[edge_key(ga, gb)];
     }
   auto is_seam = [&](const BEdge& e) { return seen[edge_key(patch.vertex[e.a], patch.vertex[e.b])] > 1; };
@@ -135,7 +137,7 @@ std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh
   const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
   tbb::parallel_for(0, static_cast<int>(bg.patches.size()), [&](int i) {
-    if (!bg.patches[i].tris.empty()) face_widths(g, bg, bg.patches[i], edge_of, widths[i]);
+    if (!bg.patches[i].tris.empty()) face_widths(g, bg, bg.patches[i], p, edge_of, widths[i]);
   });
   std::vector<double> h(bg.num_vertices(), kNoLimit);
   for (size_t i = 0; i < widths.size(); ++i)
@@ -149,15 +151,19 @@ std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh
 // bound delta, curves shorter than 2 delta set none (as narrow faces above).
 std::vector<double> curve_length_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   std::vector<double> h(bg.num_vertices(), kNoLimit);
+  // A feature curve's length is its composite curve's; a virtual one sets none.
+  const auto length = [&](int c) {
+    return c >= 1 && c <= static_cast<int>(p.chain_length.size()) ? p.chain_length[c - 1] : g.curve_length(c);
+  };
   for (int c = 1; c <= g.num_curves(); ++c) {
-    const double len = g.curve_length(c);
-    if (g.curve_degenerated(c) || !(len > 0) || len < below_accuracy(p)) continue;
+    const double len = length(c);
+    if (p.crossed(c) || g.curve_degenerated(c) || !(len > 0) || len < below_accuracy(p)) continue;
     for (int pt : {g.curve_start_point(c), g.curve_end_point(c)})
       if (pt > 0) h[pt - 1] = std::min(h[pt - 1], len);
   }
   for (int v = 0; v < bg.num_vertices(); ++v)
-    if (bg.dim[v] == 1) {
-      const double len = g.curve_length(bg.entity[v]);
+    if (bg.dim[v] == 1 && !p.crossed(bg.entity[v])) {
+      const double len = length(bg.entity[v]);
       if (len > 0 && !(len < below_accuracy(p))) h[v] = std::min(h[v], len);
     }
   return h;
