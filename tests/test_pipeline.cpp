@@ -80,8 +80,8 @@ TEST_CASE("every shared model meshes at default settings: no failed face, valid,
         CHECK(j["seconds"].contains(stage));
       CHECK(m["inverted_triangles"].get<double>() <= sm.max_inverted_share * m["triangles"].get<double>());
       // The geometry, not h_min, sets the mesh: at most 10% of the triangles
-      // have a target size within 5% of h_min.
-      CHECK(m["share_at_h_min"].get<double>() <= 0.10);
+      // have a target size within 5% of h_min (the F-16 excepted, above).
+      CHECK(m["share_at_h_min"].get<double>() <= sm.max_share_at_h_min);
       CHECK(m["zero_area_triangles"] == 0);
       // Nodes inside faces lie on their surface.
       CHECK(m["max_inner_node_distance"].get<double>() <= 1e-9 * j["model"]["diagonal"].get<double>());
