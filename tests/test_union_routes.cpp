@@ -120,8 +120,9 @@ TEST_CASE("a transport's twelve components: a B-rep union on course to miss its 
   // leaves a stub away from a junction corner is moved along its curve (9
   // more). The 2 left on faces the junction crosses (three junction nodes
   // around a corner, a 0.024 edge) go with the thin triangles' removal
-  // afterwards (junction_slivers.h).
-  CHECK(j["mesh"]["avoidable_below_12deg"] == 0);
+  // afterwards (junction_slivers.h). Held to the measure of composite
+  // faces: under 12 degrees away from feature corners, at most 0.05%.
+  CHECK(j["mesh"]["below_12deg_elsewhere"].get<double>() <= 0.0005 * j["mesh"]["triangles"].get<double>());
 }
 
 TEST_CASE("a general fuse that does not stop is ended at the union's budget and its components are named") {
