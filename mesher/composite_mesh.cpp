@@ -28,6 +28,15 @@ CompositeMesh::CompositeMesh(SurfaceMesh& s, const Geometry& g, const SizeField&
     ++hard_degree_[static_cast<int>(e & 0xffffffffu)];
   }
   size_.assign(xyz_.size(), -1.0);  // asked when first needed
+  // Nodes ranked by position: the mesher numbers them in the order its
+  // threads finish faces, and the operations must not depend on it.
+  std::vector<int> order(xyz_.size());
+  for (size_t n = 0; n < order.size(); ++n) order[n] = static_cast<int>(n);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::lexicographical_compare(xyz_[a].data(), xyz_[a].data() + 3, xyz_[b].data(), xyz_[b].data() + 3);
+  });
+  rank_.assign(xyz_.size(), 0);
+  for (size_t i = 0; i < order.size(); ++i) rank_[order[i]] = static_cast<int>(i);
   curve_.assign(xyz_.size(), 0);
   slid_.assign(xyz_.size(), 0);
   for (size_t n = 0; n < xyz_.size(); ++n)
@@ -40,7 +49,7 @@ std::vector<int> CompositeMesh::neighbours(int n) const {
   for (int t : node_tris_[n])
     for (int m : tris_[t])
       if (m != n) out.push_back(m);
-  std::sort(out.begin(), out.end());
+  std::sort(out.begin(), out.end(), before_);
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
@@ -123,6 +132,7 @@ bool CompositeMesh::project(const Vec3& p, double reach, Vec3& x, Place& at) con
 int CompositeMesh::add_node(const Vec3& x, const Place& at) {
   xyz_.push_back(x);
   place_.push_back(at);
+  rank_.push_back(static_cast<int>(rank_.size()));
   curve_.push_back(0);
   slid_.push_back(0);
   normal_.push_back(surface_normal(at));

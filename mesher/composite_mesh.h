@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <unordered_map>
@@ -69,7 +70,9 @@ class CompositeMesh {
         }
     return r;
   }
-  std::vector<int> neighbours(int n) const;
+  std::vector<int> neighbours(int n) const;  // in rank order
+  // Node a before node b: by position (made nodes after, in the order made).
+  int rank(int n) const { return rank_[n]; }
 
   bool collapse(int b, int a, OpCount& c);  // b merged into a (a stays)
   bool split(int a, int b, OpCount& c);     // a soft edge cut at its middle
@@ -131,6 +134,8 @@ class CompositeMesh {
   std::vector<Place> place_;
   std::vector<Vec3> normal_;
   std::vector<int> curve_;     // the B-rep curve an input node lies on; 0 none
+  std::vector<int> rank_;
+  std::function<bool(int, int)> before_ = [this](int a, int b) { return rank_[a] < rank_[b]; };
   std::vector<char> slid_;     // moved along its curve
   std::unordered_map<uint64_t, Vec2> input_uv_;  // (node, face) -> the input triangles' uv
   std::vector<char> has_normal_;

@@ -111,9 +111,8 @@ Attempt remesh_once(SurfaceMesh& s, const Geometry& g, const SizeField& h, const
       for (int m : around[active[i]])
         if (!in[m]) in[m] = 1, active.push_back(m);
   }
-  std::sort(active.begin(), active.end());
-
   composite_detail::CompositeMesh m(s, g, h, hard, corner);
+  std::sort(active.begin(), active.end(), [&](int a, int b) { return m.rank(a) < m.rank(b); });
   composite_detail::OpCount& c = at.ops;
   for (int pass = 0; pass < kPasses; ++pass) {
     for (size_t i = 0; i < active.size(); ++i) {  // short edges: a free or chain node merged away

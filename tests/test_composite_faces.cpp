@@ -178,7 +178,7 @@ TEST_CASE("real sharp edges keep their nodes: a box's edges and a wing's trailin
   test::require_valid_closed(*wing->model, wing->mesh, wing->report.quality, wing->model->info().diagonal());
 }
 
-TEST_CASE("--no-composite meshes every B-rep face apart") {
+TEST_CASE("without composite faces (--no-composite) every B-rep face is meshed apart") {
   RunOptions o;
   o.verbose = false;
   o.sizing.h_max = 0.1;
