@@ -24,9 +24,8 @@ bool CompositeMesh::collapse(int b, int a, OpCount& count) {
         if (m != a && m != b) opposite.push_back(m);
   const auto na = neighbours(a), nb = neighbours(b);
   std::vector<int> common;
-  const auto by_rank = [this](int x, int y) { return rank_[x] < rank_[y]; };
-  std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common), by_rank);
-  std::sort(opposite.begin(), opposite.end(), by_rank);
+  std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common), before_);
+  std::sort(opposite.begin(), opposite.end(), before_);
   if (common != opposite) return false;
   int other = -1;  // the chain's next node past b
   if (chain) {

@@ -20,6 +20,7 @@
 #include <gp_Pln.hxx>
 
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "cad/occt_model.h"
@@ -67,16 +68,30 @@ TopoDS_Shape sliced_cylinder(int n) {
   return fuse.Shape();
 }
 
-}  // namespace
-
-TEST_CASE("a strip a tenth of the size wide on a box's top is meshed with the rest of the top") {
+// The command's stages on the box with a strip 0.01 wide, h_max 0.1.
+std::unique_ptr<RunResult> box_run(bool composite) {
   RunOptions o;
   o.verbose = false;
   o.sizing.h_max = 0.1;
-  const auto run = test::run_model(model_from_shape(box_with_strip(0.01)), o);
+  o.sizing.composite = composite;
+  return test::run_model(model_from_shape(box_with_strip(0.01)), o);
+}
+
+// Mesh nodes inside the strip's inner curve (x = 0.99 on the top, ends left out).
+int nodes_on_inner_curve(const SurfaceMesh& m) {
+  int n = 0;
+  for (const Vec3& x : m.xyz)
+    n += std::abs(x.z() - 1) < 1e-9 && std::abs(x.x() - 0.99) < 1e-6 && x.y() > 1e-9 && x.y() < 1 - 1e-9;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a strip a tenth of the size wide on a box's top is meshed with the rest of the top") {
+  const auto run = box_run(true);
   const SurfaceMesh& m = run->mesh;
   REQUIRE(m.failures.empty());
-  int on_top = 0, thin_on_top = 0, on_inner_curve = 0;
+  int on_top = 0, thin_on_top = 0;
   for (const auto& tr : m.tris) {
     bool top = true;
     for (int n : tr) top = top && std::abs(m.xyz[n].z() - 1) < 1e-9;
@@ -84,8 +99,7 @@ TEST_CASE("a strip a tenth of the size wide on a box's top is meshed with the re
     ++on_top;
     thin_on_top += min_angle_deg(m.xyz[tr[0]], m.xyz[tr[1]], m.xyz[tr[2]]) < 30;
   }
-  for (const Vec3& x : m.xyz)
-    on_inner_curve += std::abs(x.z() - 1) < 1e-9 && std::abs(x.x() - 0.99) < 1e-6 && x.y() > 1e-9 && x.y() < 1 - 1e-9;
+  const int on_inner_curve = nodes_on_inner_curve(m);
   INFO(m.tris.size() << " triangles, " << on_top << " on the top, " << thin_on_top << " of them under 30 degrees, "
                      << on_inner_curve << " nodes on the strip's inner curve");
   CHECK(run->topology.composites == 6);  // the box's six sides
@@ -155,10 +169,7 @@ double length_along(const SurfaceMesh& m, const Vec3& a, const Vec3& b, double t
 }  // namespace
 
 TEST_CASE("real sharp edges keep their nodes: a box's edges and a wing's trailing edge") {
-  RunOptions o;
-  o.verbose = false;
-  o.sizing.h_max = 0.1;
-  const auto box = test::run_model(model_from_shape(box_with_strip(0.01)), o);
+  const auto box = box_run(true);
   // The twelve edges of the unit box, each covered by mesh edges end to end.
   for (int axis = 0; axis < 3; ++axis)
     for (int i = 0; i < 4; ++i) {
@@ -170,6 +181,9 @@ TEST_CASE("real sharp edges keep their nodes: a box's edges and a wing's trailin
       INFO("box edge from " << a.transpose() << " to " << b.transpose());
       CHECK(length_along(box->mesh, a, b, 1e-9) == Approx(1.0).epsilon(1e-9));
     }
+  RunOptions o;
+  o.verbose = false;
+  o.sizing.h_max = 0.1;
   const auto wing = test::run_model(model_from_shape(straight_wing()), o);
   const Topology& t = wing->topology;
   CHECK(t.count(CurveKind::Angle) >= 1);  // the trailing edge at least
@@ -179,18 +193,11 @@ TEST_CASE("real sharp edges keep their nodes: a box's edges and a wing's trailin
 }
 
 TEST_CASE("without composite faces (--no-composite) every B-rep face is meshed apart") {
-  RunOptions o;
-  o.verbose = false;
-  o.sizing.h_max = 0.1;
-  o.sizing.composite = false;
-  const auto run = test::run_model(model_from_shape(box_with_strip(0.01)), o);
+  const auto run = box_run(false);
   const SurfaceMesh& m = run->mesh;
   REQUIRE(m.failures.empty());
   CHECK_FALSE(run->topology.enabled);
   CHECK(run->topology.composites == run->model->num_faces());
   CHECK(run->report.composite.collapsed + run->report.composite.smoothed + run->report.composite.flipped == 0);
-  int on_inner_curve = 0;  // the strip's inner curve keeps its nodes
-  for (const Vec3& x : m.xyz)
-    on_inner_curve += std::abs(x.z() - 1) < 1e-9 && std::abs(x.x() - 0.99) < 1e-6 && x.y() > 1e-9 && x.y() < 1 - 1e-9;
-  CHECK(on_inner_curve > 0);
+  CHECK(nodes_on_inner_curve(m) > 0);  // the strip's inner curve keeps its nodes
 }
