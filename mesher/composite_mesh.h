@@ -12,7 +12,6 @@
 #include <functional>
 #include <memory>
 #include <unordered_map>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -49,6 +48,8 @@ class CompositeMesh {
   bool dead(int t) const { return dead_[t] != 0; }
   // Free: on no kept edge, so it moves anywhere on its composite face.
   bool free(int n) const { return hard_degree_[n] == 0 && !corner_[n]; }
+  // Never moves nor merges away (nodes made by the re-mesh are no corners).
+  bool corner(int n) const { return corner_[n] != 0; }
   double size(int n) {
     if (size_[n] < 0) {
       int hint = -1;

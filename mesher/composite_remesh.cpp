@@ -117,7 +117,7 @@ Attempt remesh_once(SurfaceMesh& s, const Geometry& g, const SizeField& h, const
   for (int pass = 0; pass < kPasses; ++pass) {
     for (size_t i = 0; i < active.size(); ++i) {  // short edges: a free or chain node merged away
       const int n = active[i];
-      if (m.star(n).empty() || corner[n]) continue;
+      if (m.star(n).empty() || m.corner(n)) continue;
       if (!(m.edge_range(n)[0] < 1.5 * kShortEdge * m.size(n))) continue;  // no edge near short
       auto nb = m.neighbours(n);
       std::sort(nb.begin(), nb.end(), [&](int x, int y) {
