@@ -167,6 +167,10 @@ void mesh_union(RunResult& r, const RunOptions& o, const WarningSink& warn) {
 // Composite faces meshed as one: the mesh re-meshed across virtual curves.
 void composite(RunResult& r, const RunOptions&, const WarningSink&) {
   r.report.composite = remesh_composites(r.mesh, *r.model, *r.query, r.topology, &r.report.mesh_union.junction);
+  r.report.virtual_reasons = classify_virtual_curves(*r.model, r.topology, [&](int f, const Vec2& uv) {
+    int hint = -1;
+    return r.query->at(f, uv, hint);
+  });
 }
 
 void quality(RunResult& r, const RunOptions&, const WarningSink& warn) {

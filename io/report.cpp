@@ -42,7 +42,11 @@ nlohmann::json report_json(const RunReport& r) {
                      {"feature_angle_deg", t.feature_angle_deg},
                      {"composite_faces", t.composites},
                      {"composite_curves", t.composite_curves},
-                     {"curves_by_kind", kinds}};
+                     {"curves_by_kind", kinds},
+                     {"virtual_by_reason", {{"short", r.virtual_reasons.short_curve},
+                                            {"narrow_face", r.virtual_reasons.narrow_face},
+                                            {"small_angle", r.virtual_reasons.small_angle},
+                                            {"smooth", r.virtual_reasons.smooth}}}};
   }
   j["preparation"] = {{"components", components},
                       {"union_requested", prep.union_requested},
@@ -193,7 +197,9 @@ void print_mesh_summary(const RunReport& r, std::ostream& out) {
   if (r.topology && r.topology->enabled) {
     const Topology& t = *r.topology;
     out << "composite faces: " << t.composites << " over " << t.face_composite.size() << " faces; curves: "
-        << t.count(CurveKind::Virtual) << " crossed (smooth), "
+        << t.count(CurveKind::Virtual) << " crossed (" << r.virtual_reasons.short_curve << " short, "
+        << r.virtual_reasons.narrow_face << " beside narrow faces, " << r.virtual_reasons.small_angle
+        << " at small angles, " << r.virtual_reasons.smooth << " only smooth), "
         << t.count(CurveKind::Angle) + t.count(CurveKind::Marker) + t.count(CurveKind::User) +
                t.count(CurveKind::Boundary)
         << " kept (" << t.count(CurveKind::Angle) << " sharp, " << t.count(CurveKind::Marker) << " between markers, "

@@ -12,6 +12,7 @@
 
 #include "cad/model.h"
 #include "mesher/composite_remesh.h"
+#include "topology/virtual_reasons.h"
 #include "mesher/cut_faces.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
@@ -40,6 +41,7 @@ struct RunReport {
   CutFacesResult cut_faces;    // the faces that union cut, meshed again
   const Topology* topology = nullptr;
   CompositeRemeshResult composite;  // the mesh re-meshed across virtual curves
+  VirtualReasons virtual_reasons;   // why each crossed curve was in the way
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
 };
 

@@ -103,6 +103,11 @@ TEST_CASE("a strip a tenth of the size wide on a box's top is meshed with the re
   INFO(m.tris.size() << " triangles, " << on_top << " on the top, " << thin_on_top << " of them under 30 degrees, "
                      << on_inner_curve << " nodes on the strip's inner curve");
   CHECK(run->topology.composites == 6);  // the box's six sides
+  // The cut's four curves are crossed because each bounds a strip narrower than the size.
+  const VirtualReasons& why = run->report.virtual_reasons;
+  CHECK(run->topology.count(CurveKind::Virtual) == 4);
+  CHECK(why.narrow_face == 4);
+  CHECK(why.short_curve + why.small_angle + why.smooth == 0);
   CHECK(thin_on_top == 0);
   CHECK(on_inner_curve == 0);
   test::require_valid_closed(*run->model, m, run->report.quality, run->model->info().diagonal());
@@ -119,6 +124,8 @@ TEST_CASE("a cylinder cut into 20 narrow faces meshes as one") {
                                 << sliced->report.composite.virtual_nodes_left << " nodes left on cut curves");
   CHECK(sliced->model->num_faces() >= 22);
   CHECK(sliced->topology.composites == 3);
+  const VirtualReasons& why = sliced->report.virtual_reasons;  // each crossed curve counted once
+  CHECK(why.short_curve + why.narrow_face + why.small_angle + why.smooth == sliced->topology.count(CurveKind::Virtual));
   CHECK(q.below_12 == 0);
   CHECK(q.below_24 <= 0.005 * q.triangles);
   CHECK(std::abs(double(sliced->mesh.tris.size()) / whole->mesh.tris.size() - 1) < 0.15);
