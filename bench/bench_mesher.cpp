@@ -7,8 +7,12 @@
 // Usage: bench_mesher [model-file ...] [--div N] [--no-size-map]
 //        (default: every shared model)
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <cstdio>
 #include <cstring>
+#include <unistd.h>
 #include <algorithm>
 #include <functional>
 #include <string>
@@ -31,7 +35,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 using Mesher = std::function<SurfaceMesh(int threads)>;
 
 // Meshes once with one thread and once with all, and prints one row.
-void run(const std::string& name, const char* size_name, const Model& model, const SizeField& h, const Mesher& mesh) {
+// Returns the triangles per second with one thread.
+double run(const std::string& name, const char* size_name, const Model& model, const SizeField& h, const Mesher& mesh) {
   double cad_area = 0;
   for (int f = 1; f <= model.num_faces(); ++f) cad_area += model.face_area(f);
   auto t0 = std::chrono::steady_clock::now();
@@ -57,6 +62,31 @@ void run(const std::string& name, const char* size_name, const Model& model, con
   for (const auto& f : m.failures) std::printf("    face %d failed: %s\n", f.face, f.reason.c_str());
   if (m1.tris != m.tris || m1.xyz != m.xyz) std::printf("    WARNING: the mesh differs between 1 and all threads\n");
   std::fflush(stdout);
+  return s1 > 0 ? m1.tris.size() / s1 : 0;
+}
+
+// The meshing stage's triangles per second of `binary` on one thread, from
+// its report; 0 when it gives none.
+double command_rate(const std::string& binary, const std::string& model, std::string& note) {
+  const std::string dir = "/tmp/bench_mesher_" + std::to_string(::getpid());
+  std::system(("mkdir -p " + dir).c_str());
+  const std::string cmd = "'" + binary + "' '" + model + "' --threads 1 -q -o " + dir + "/m.vtu --report " + dir +
+                          "/r.json > /dev/null 2>&1";
+  std::remove((dir + "/r.json").c_str());
+  std::system(cmd.c_str());
+  std::ifstream in(dir + "/r.json");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const double seconds = j.at("seconds").at("meshing").get<double>();
+    const double tris = j.at("mesh").at("triangles").get<double>();
+    char line[120];
+    std::snprintf(line, sizeof line, "%.0f tris in %.3f s", tris, seconds);
+    note = line;
+    return seconds > 0 ? tris / seconds : 0;
+  } catch (const std::exception&) {
+    note = "no report with seconds.meshing";
+    return 0;
+  }
 }
 
 }  // namespace
@@ -65,11 +95,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   double div = 40;
   bool size_map = true;
+  std::string baseline;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--div") && i + 1 < argc) div = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--baseline") && i + 1 < argc) baseline = argv[++i];
     else if (!std::strcmp(argv[i], "--no-size-map")) size_map = false;
     else files.push_back(argv[i]);
   }
+  std::string self_dir = argv[0];
+  self_dir = self_dir.find('/') == std::string::npos ? "." : self_dir.substr(0, self_dir.find_last_of('/'));
   if (files.empty())
     for (const auto& m : sizemesh::test::shared_models())  // one list for tests and benches
       files.push_back(std::string(SIZEMESH_MODELS_DIR) + "/" + m.file);
@@ -104,6 +138,14 @@ int main(int argc, char** argv) {
         run_stages(*r, with, sizemesh::test::quiet(), until(from(all_stages(), "meshing"), "meshing"));
         return r->mesh;
       });
+      if (!baseline.empty()) {
+        // Both as commands, one after the other: the same work, the same machine state.
+        std::string mine_note, base_note;
+        const double mine = command_rate(self_dir + "/../sizemesh", path, mine_note);
+        const double base = command_rate(baseline, path, base_note);
+        std::printf("    meshing stage, 1 thread: this build %s (%.0f tris/s), baseline %s (%.0f tris/s): ratio %.2f\n",
+                    mine_note.c_str(), mine, base_note.c_str(), base, base > 0 ? mine / base : 0.0);
+      }
     } catch (const std::exception& e) {
       std::printf("%-32s error: %s\n", name.c_str(), e.what());
     }
