@@ -191,9 +191,13 @@ bool CompositeMesh::smooth(int n, OpCount& count) {
   for (int t : node_tris_[n]) old_normals.push_back(normal(tris_[t]));
   xyz_[n] = x;
   bool ok = true;
+  // Each triangle turns by at most 30 degrees, or turns towards the surface
+  // (a triangle the union left standing across it is laid down).
   for (size_t i = 0; i < node_tris_[n].size() && ok; ++i) {
     const Vec3 m = normal(tris_[node_tris_[n][i]]);
-    ok = m.dot(old_normals[i]) >= kCos30 * m.norm() * old_normals[i].norm();
+    const Vec3& o = old_normals[i];
+    ok = m.dot(o) >= kCos30 * m.norm() * o.norm() ||
+         (!n_new.isZero() && m.norm() > 0 && o.norm() > 0 && m.dot(n_new) / m.norm() > o.dot(n_new) / o.norm());
   }
   if (ok) {
     std::vector<std::array<Vec3, 3>> corners;
