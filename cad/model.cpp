@@ -82,6 +82,21 @@ GeomAdaptor_Surface& Model::Impl::adaptor(int face) const {
   return *a;
 }
 
+// A span's polynomial is (p+1)(q+1) times the size of one pole: the tables
+// of every face together may take up to this much; faces past it, in id
+// order, evaluate through the per-thread adaptor.
+void Model::Impl::make_span_tables() {
+  constexpr size_t kBudget = size_t(256) << 20;
+  size_t used = 0;
+  span_tables.clear();
+  span_tables.resize(face_data.size());
+  for (size_t f = 0; f < face_data.size(); ++f) {
+    if (face_data[f].surface.IsNull() || used >= kBudget) continue;
+    span_tables[f] = SpanTable::make(face_data[f].surface, kBudget - used);
+    if (span_tables[f]) used += span_tables[f]->bytes();
+  }
+}
+
 // uv shifted by whole wraps into the parameter range of a surface closed
 // without a period (OcctFace::wrap); unchanged on other faces.
 Vec2 Model::Impl::wrapped(int face, Vec2 uv) const {
@@ -100,7 +115,8 @@ SurfaceD1 Model::eval_face(int face, const Vec2& at) const {
   gp_Vec du, dv;
   const Vec2 uv = impl_->wrapped(face, at);
   try {
-    impl_->adaptor(face).D1(uv.x(), uv.y(), p, du, dv);
+    const SpanTable* t = static_cast<size_t>(face - 1) < impl_->span_tables.size() ? impl_->span_tables[face - 1].get() : nullptr;
+    if (!t || !t->d1(uv.x(), uv.y(), p, du, dv)) impl_->adaptor(face).D1(uv.x(), uv.y(), p, du, dv);
   } catch (const Standard_Failure& e) {
     throw EvaluationError("face " + std::to_string(face) + ": " + e.GetMessageString());
   }
@@ -123,6 +139,16 @@ bool Model::principal_curvatures(int face, const Vec2& at, double& k1, double& k
 }
 
 bool Model::face_reversed(int face) const { return impl_->face_data[face - 1].reversed; }
+bool Model::face_elementary(int face) const {
+  switch (impl_->adaptor(face).GetType()) {
+    case GeomAbs_Plane:
+    case GeomAbs_Cylinder:
+    case GeomAbs_Cone:
+    case GeomAbs_Sphere:
+    case GeomAbs_Torus: return true;
+    default: return false;
+  }
+}
 UVBox Model::face_uv_bounds(int face) const { return impl_->face_data[face - 1].uv_bounds; }
 double Model::face_period_u(int face) const { return impl_->face_data[face - 1].period_u; }
 double Model::face_period_v(int face) const { return impl_->face_data[face - 1].period_v; }

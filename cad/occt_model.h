@@ -19,6 +19,7 @@
 #include <TopoDS_Solid.hxx>
 
 #include "cad/model.h"
+#include "cad/span_table.h"
 
 namespace sizemesh {
 
@@ -64,6 +65,10 @@ struct Model::Impl {
   // evaluates several times faster than locating it and running de Boor anew.
   // An adaptor is not thread-safe, so each thread has its own, made on first use.
   mutable tbb::enumerable_thread_specific<std::vector<std::unique_ptr<GeomAdaptor_Surface>>> adaptors;
+  // Per face, its B-spline spans' polynomials, shared by the threads
+  // (cad/span_table.h); null for other surfaces and past the model's budget.
+  std::vector<std::unique_ptr<SpanTable>> span_tables;
+  void make_span_tables();
   GeomAdaptor_Surface& adaptor(int face) const;
   Vec2 wrapped(int face, Vec2 uv) const;
 };

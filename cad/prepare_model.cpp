@@ -207,6 +207,7 @@ Model prepare_model(const CadFile& cad_file, const LoadOptions& options) {
     impl->face_data.reserve(info.faces);
     for (int f = 1; f <= info.faces; ++f)
       impl->face_data.push_back(make_face_data(TopoDS::Face(impl->faces(f)), area[f - 1], impl->edges, impl->curve_data));
+    impl->make_span_tables();
   } catch (const Standard_Failure& e) {
     throw Error(std::string("broken shape: ") + e.GetMessageString());
   }
