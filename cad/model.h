@@ -109,6 +109,7 @@ class Model : public Geometry {
   SurfaceD1 eval_face(int face, const Vec2& uv) const override;
   bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const override;
   bool face_reversed(int face) const override;
+  bool face_elementary(int face) const override;
   UVBox face_uv_bounds(int face) const override;
   double face_period_u(int face) const override;
   double face_period_v(int face) const override;

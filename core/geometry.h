@@ -59,6 +59,9 @@ class Geometry {
   }
   // True where the face's orientation in its shell flips the surface normal.
   virtual bool face_reversed(int face) const = 0;
+  // A plane, cylinder, cone, sphere or torus in its natural parameters: a
+  // metric that separates in u and v, so the mesher needs no stretch of its uv.
+  virtual bool face_elementary(int face) const { return false; }
   virtual UVBox face_uv_bounds(int face) const = 0;
   // Period in u / v, 0 when not periodic.
   virtual double face_period_u(int face) const = 0;

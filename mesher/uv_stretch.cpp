@@ -32,6 +32,10 @@ double UvStretch::Axis::slope(double x) const {
 }
 
 UvStretch::UvStretch(const Geometry& g, int face) {
+  // The mean speed of an elementary surface along u is the same on every
+  // v-line and the other way round (its metric separates): both maps would be
+  // the identity, found at the cost of the samples below.
+  if (g.face_elementary(face)) return;
   const UVBox box = g.face_uv_bounds(face);
   const double period[2] = {g.face_period_u(face), g.face_period_v(face)};
   for (int d = 0; d < 2; ++d) {
