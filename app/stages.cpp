@@ -243,8 +243,10 @@ std::unique_ptr<RunResult> start_run(const RunOptions& o) {
 
 void run_stages(RunResult& r, const RunOptions& o, const WarningSink& warn, const Stages& stages) {
   for (const Stage& s : stages) {
+    const long long before = r.model ? r.model->surface_evaluations() : 0;
     s.step(r, o, warn);
     r.clock.lap(s.name);
+    r.report.evaluations.emplace_back(s.name, (r.model ? r.model->surface_evaluations() : 0) - before);
   }
 }
 

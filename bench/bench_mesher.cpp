@@ -138,6 +138,9 @@ int main(int argc, char** argv) {
         run_stages(*r, with, sizemesh::test::quiet(), until(from(all_stages(), "meshing"), "meshing"));
         return r->mesh;
       });
+      if (!r->report.evaluations.empty() && r->report.evaluations.back().first == "meshing" && !r->mesh.tris.empty())
+        std::printf("    surface evaluations per triangle, meshing stage: %.1f\n",
+                    double(r->report.evaluations.back().second) / r->mesh.tris.size());
       if (!baseline.empty()) {
         // Both as commands, one after the other: the same work, the same machine state.
         std::string mine_note, base_note;

@@ -75,7 +75,7 @@ int Model::num_curves() const { return impl_->edges.Extent(); }
 int Model::num_points() const { return impl_->vertices.Extent(); }
 
 GeomAdaptor_Surface& Model::Impl::adaptor(int face) const {
-  auto& mine = adaptors.local();
+  auto& mine = per_thread.local().adaptors;
   if (mine.empty()) mine.resize(face_data.size());
   auto& a = mine[face - 1];
   if (!a) a = std::make_unique<GeomAdaptor_Surface>(face_data[face - 1].surface);
@@ -114,6 +114,7 @@ SurfaceD1 Model::eval_face(int face, const Vec2& at) const {
   gp_Pnt p;
   gp_Vec du, dv;
   const Vec2 uv = impl_->wrapped(face, at);
+  ++impl_->per_thread.local().evaluations;
   try {
     const SpanTable* t = static_cast<size_t>(face - 1) < impl_->span_tables.size() ? impl_->span_tables[face - 1].get() : nullptr;
     if (!t || !t->d1(uv.x(), uv.y(), p, du, dv)) impl_->adaptor(face).D1(uv.x(), uv.y(), p, du, dv);
@@ -121,6 +122,12 @@ SurfaceD1 Model::eval_face(int face, const Vec2& at) const {
     throw EvaluationError("face " + std::to_string(face) + ": " + e.GetMessageString());
   }
   return {to_vec(p), to_vec(du), to_vec(dv)};
+}
+
+long long Model::surface_evaluations() const {
+  long long n = 0;
+  for (const auto& t : impl_->per_thread) n += t.evaluations;
+  return n;
 }
 
 bool Model::principal_curvatures(int face, const Vec2& at, double& k1, double& k2) const {

@@ -64,7 +64,11 @@ struct Model::Impl {
   // mesher's evaluations come in runs within a span, and a cached span
   // evaluates several times faster than locating it and running de Boor anew.
   // An adaptor is not thread-safe, so each thread has its own, made on first use.
-  mutable tbb::enumerable_thread_specific<std::vector<std::unique_ptr<GeomAdaptor_Surface>>> adaptors;
+  struct PerThread {
+    std::vector<std::unique_ptr<GeomAdaptor_Surface>> adaptors;
+    long long evaluations = 0;  // eval_face calls on this thread
+  };
+  mutable tbb::enumerable_thread_specific<PerThread> per_thread;
   // Per face, its B-spline spans' polynomials, shared by the threads
   // (cad/span_table.h); null for other surfaces and past the model's budget.
   std::vector<std::unique_ptr<SpanTable>> span_tables;

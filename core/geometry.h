@@ -48,6 +48,9 @@ class Geometry {
 
   // --- faces ---
   virtual SurfaceD1 eval_face(int face, const Vec2& uv) const = 0;
+  // Surface evaluations (eval_face calls) so far, over all threads; read
+  // it while no other thread evaluates. 0 where not counted.
+  virtual long long surface_evaluations() const { return 0; }
   // Principal curvatures at uv (1/length, signed, |k1| >= |k2|); false where they are undefined.
   virtual bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const = 0;
   // Largest absolute principal curvature at uv; false where it is undefined.

@@ -153,6 +153,8 @@ nlohmann::json report_json(const RunReport& r) {
                    {"faces_filled", st.faces_filled},
                    {"back_to_back_dropped", st.back_to_back_dropped},
                    {"shared_edges_flipped", st.shared_edges_flipped}};
+    for (const auto& [stage, e] : r.evaluations)
+      if (stage == "meshing") j["mesher"]["surface_evaluations_per_triangle"] = e / n;
     j["mesh_union"] = {{"united", r.mesh_union.united},
                        {"failed", std::count_if(r.mesh_union.failures.begin(), r.mesh_union.failures.end(),
                                                 [](const std::string& f) { return !f.empty(); })},
@@ -187,6 +189,9 @@ nlohmann::json report_json(const RunReport& r) {
   json t;
   for (const auto& [stage, s] : r.seconds) t[stage] = s;
   j["seconds"] = t;
+  json e = json::object();
+  for (const auto& [stage, count] : r.evaluations) e[stage] = count;
+  j["surface_evaluations"] = e;
   return j;
 }
 

@@ -43,6 +43,7 @@ struct RunReport {
   CompositeRemeshResult composite;  // the mesh re-meshed across virtual curves
   VirtualReasons virtual_reasons;   // why each crossed curve was in the way
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time
+  std::vector<std::pair<std::string, long long>> evaluations;  // stage, surface evaluations in it
 };
 
 nlohmann::json report_json(const RunReport& r);

@@ -134,6 +134,22 @@ TEST_CASE("the same input gives the same mesh with 1 thread and with 2") {
   fs::remove(two);
 }
 
+TEST_CASE("surface evaluations are counted per stage, the same for 1 and 2 threads, a few per triangle") {
+  const std::string model = test::model_path("onera_m6_wing.stp");
+  const auto one = test::run_with_report(model + " -q --threads 1 -o " + scratch("e1.vtu"), scratch("e1.json"));
+  const auto two = test::run_with_report(model + " -q --threads 2 -o " + scratch("e2.vtu"), scratch("e2.json"));
+  INFO(one["surface_evaluations"].dump());
+  CHECK(one["surface_evaluations"] == two["surface_evaluations"]);
+  for (const char* stage : {"load", "meshing", "composite", "quality"}) CHECK(one["surface_evaluations"].contains(stage));
+  CHECK(one["surface_evaluations"]["load"] == 0);  // reading evaluates no surface through the model
+  // The meshing stage's work: each triangle costs a bounded number of
+  // evaluations (front candidates, checks, optimisation); 8.2 when written.
+  const double per = one["mesher"]["surface_evaluations_per_triangle"];
+  CHECK(per > 1);
+  CHECK(per < 25);
+  for (const char* f : {"e1.vtu", "e2.vtu", "e1.json", "e2.json"}) fs::remove(scratch(f));
+}
+
 TEST_CASE("after the union the .msh groups and the .vtu fields carry the source face of every triangle") {
   // The F-16's 69 sewn faces become 58: each result face is an entity in the
   // physical group of the sewn face it came from.
