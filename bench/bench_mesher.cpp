@@ -139,8 +139,12 @@ int main(int argc, char** argv) {
         return r->mesh;
       });
       if (!r->report.evaluations.empty() && r->report.evaluations.back().first == "meshing" && !r->mesh.tris.empty())
-        std::printf("    surface evaluations per triangle, meshing stage: %.1f\n",
-                    double(r->report.evaluations.back().second) / r->mesh.tris.size());
+        std::printf("    surface evaluations per triangle, meshing stage: %.1f (face setup %.1f, front %.1f, "
+                    "optimisation %.1f; the rest curves and assembly)\n",
+                    double(r->report.evaluations.back().second) / r->mesh.tris.size(),
+                    double(r->mesh.stats.evaluations_setup) / r->mesh.tris.size(),
+                    double(r->mesh.stats.evaluations_front) / r->mesh.tris.size(),
+                    double(r->mesh.stats.evaluations_optimise) / r->mesh.tris.size());
       if (!baseline.empty()) {
         // Both as commands, one after the other: the same work, the same machine state.
         std::string mine_note, base_note;

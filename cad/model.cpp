@@ -130,6 +130,8 @@ long long Model::surface_evaluations() const {
   return n;
 }
 
+long long Model::thread_surface_evaluations() const { return impl_->per_thread.local().evaluations; }
+
 bool Model::principal_curvatures(int face, const Vec2& at, double& k1, double& k2) const {
   const auto& s = impl_->face_data[face - 1].surface;
   const Vec2 uv = impl_->wrapped(face, at);

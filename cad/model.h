@@ -108,6 +108,7 @@ class Model : public Geometry {
   int num_points() const override;
   SurfaceD1 eval_face(int face, const Vec2& uv) const override;
   long long surface_evaluations() const override;
+  long long thread_surface_evaluations() const override;
   bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const override;
   bool face_reversed(int face) const override;
   bool face_elementary(int face) const override;

@@ -51,6 +51,8 @@ class Geometry {
   // Surface evaluations (eval_face calls) so far, over all threads; read
   // it while no other thread evaluates. 0 where not counted.
   virtual long long surface_evaluations() const { return 0; }
+  // Those made on the calling thread.
+  virtual long long thread_surface_evaluations() const { return 0; }
   // Principal curvatures at uv (1/length, signed, |k1| >= |k2|); false where they are undefined.
   virtual bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const = 0;
   // Largest absolute principal curvature at uv; false where it is undefined.

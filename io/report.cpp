@@ -155,6 +155,9 @@ nlohmann::json report_json(const RunReport& r) {
                    {"shared_edges_flipped", st.shared_edges_flipped}};
     for (const auto& [stage, e] : r.evaluations)
       if (stage == "meshing") j["mesher"]["surface_evaluations_per_triangle"] = e / n;
+    j["mesher"]["surface_evaluations"] = {{"face_setup", st.evaluations_setup},
+                                          {"front", st.evaluations_front},
+                                          {"optimise", st.evaluations_optimise}};
     j["mesh_union"] = {{"united", r.mesh_union.united},
                        {"failed", std::count_if(r.mesh_union.failures.begin(), r.mesh_union.failures.end(),
                                                 [](const std::string& f) { return !f.empty(); })},

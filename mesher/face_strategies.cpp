@@ -101,6 +101,13 @@ int slivers(const FaceMesh& fm) {
 void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, FaceResult& r) {
   const int face = fs.face();
   Stopwatch clock;
+  const Geometry& g = fs.geometry();
+  long long evaluated = g.thread_surface_evaluations();
+  auto evaluations = [&] {
+    const long long now = g.thread_surface_evaluations(), d = now - evaluated;
+    evaluated = now;
+    return d;
+  };
   const FaceMesh raw = off_bands(given, fs);
   FaceMesh steady = raw;
   const bool curled = steady_boundary_normals(steady, fs) > 0;
@@ -187,11 +194,13 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
     if (fr.ok) break;
   }
   r.seconds_front = clock.lap();
+  r.evaluations_front += evaluations();
   if (!fr.ok) {
     r.reason = fr.reason;
   } else {
     if (!optimised) optimise(r.mesh, fs, o.optimise_passes, bounds);
     r.seconds_optimise = clock.lap();
+    r.evaluations_optimise += evaluations();
     for (Vec2& uv : r.mesh.uv) uv = fs.to_surface(uv);  // the mesh leaves in the surface's uv
     r.ok = true;
   }
@@ -202,9 +211,12 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
 FaceResult mesh_face(const Geometry& g, const SizeField& h, const CurveMesh& cm, int face,
                      const MeshOptions& o) {
   FaceResult r;
+  const long long start = g.thread_surface_evaluations();
   FaceSurface fs(g, h, face);
   try {
-    mesh_inside(face_boundary(g, cm, fs), fs, o, r);
+    FaceMesh boundary = face_boundary(g, cm, fs);
+    r.evaluations_setup = g.thread_surface_evaluations() - start;
+    mesh_inside(boundary, fs, o, r);
   } catch (const Error& e) {  // the kernel cannot evaluate the face, or its boundary is unusable
     r.reason = std::string("exception: ") + e.what();
   } catch (const std::bad_alloc&) {  // this face alone asked for too much: the others are kept

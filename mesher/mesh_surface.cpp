@@ -61,6 +61,9 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeField& h, const MeshOptio
     out.stats.faces_filled += r.filled;
     out.stats.seconds_front += r.seconds_front;
     out.stats.seconds_optimise += r.seconds_optimise;
+    out.stats.evaluations_setup += r.evaluations_setup;
+    out.stats.evaluations_front += r.evaluations_front;
+    out.stats.evaluations_optimise += r.evaluations_optimise;
     if (!r.ok) {
       out.failures.push_back({f, r.reason});
       continue;

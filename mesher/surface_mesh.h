@@ -28,6 +28,8 @@ struct MeshStats {
   double seconds_front = 0;     // summed over faces: advancing front
   double seconds_optimise = 0;  // summed over faces: swaps and smoothing
   long long size_queries = 0;   // calls of SizeField::at / at_xyz
+  // Surface evaluations summed over faces: setup (uv stretch, boundary), front, optimisation.
+  long long evaluations_setup = 0, evaluations_front = 0, evaluations_optimise = 0;
   int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
   long long front_steps = 0;    // tries at front edges, over every face and strategy
   int faces_retried = 0;        // faces whose front got stuck and were meshed again
