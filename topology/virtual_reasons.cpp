@@ -4,11 +4,11 @@
 #include <cmath>
 #include <vector>
 
+#include "core/predicates.h"
+
 namespace sizemesh {
 
 namespace {
-
-constexpr double kSliverDeg = 12.0;
 
 struct Use {
   int face, side;
