@@ -44,10 +44,28 @@ constexpr double kSliverTan = 0.21255656167002213;
 constexpr double kSliverCos = 0.97814760073380569;  // cos of kSliverDeg
 
 // Smallest interior angle of a space triangle (degrees; 0 with a zero-length edge).
+// The smallest angle lies opposite the shortest edge: only the corners facing
+// edges within 1e-8 of the shortest are measured, the same values as
+// corner_angles_deg gives there; all three where that angle is under 0.01
+// degrees (the cross product of nearly parallel edges loses digits there, so
+// the order of the computed angles may differ from that of the edges).
 inline double min_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
-  if (!((b - a).norm() > 0 && (c - b).norm() > 0 && (a - c).norm() > 0)) return 0;
-  const auto angle = corner_angles_deg(a, b, c);
-  return std::min({180.0, angle[0], angle[1], angle[2]});
+  const Vec3 p[3] = {a, b, c};
+  double l[3];
+  for (int k = 0; k < 3; ++k) l[k] = (p[(k + 2) % 3] - p[(k + 1) % 3]).squaredNorm();  // opposite corner k
+  if (!(std::sqrt(l[0]) > 0 && std::sqrt(l[1]) > 0 && std::sqrt(l[2]) > 0)) return 0;
+  const double shortest = std::min({l[0], l[1], l[2]});
+  double best = 180.0;
+  for (int k = 0; k < 3; ++k) {
+    if (!(l[k] <= shortest * (1 + 1e-8))) continue;
+    const Vec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+    best = std::min(best, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / kPi);
+  }
+  if (best < 0.01) {
+    const auto angle = corner_angles_deg(a, b, c);
+    return std::min({180.0, angle[0], angle[1], angle[2]});
+  }
+  return best;
 }
 
 // A triangle of zero area: twice its area is not above 1e-12 of its summed

@@ -90,6 +90,26 @@ BallMeasure measure_ball(const FaceMesh& fm, const FaceSurface& fs, const Balls&
   return m;
 }
 
+bool ball_keeps_shape(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
+                      const SurfaceSample& s, double worst) {
+  for (int e = b.start[i]; e < b.start[i + 1]; ++e) {
+    const auto& tr = fm.tris[b.tri_of[e]];
+    Vec2 u[3];
+    const SurfaceSample* p[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
+      p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
+    }
+    if (fm.pole_triangle(tr)) {
+      if (!(orient(u[0], u[1], u[2]) > 0)) return false;
+      continue;
+    }
+    const double q = shape(u[0], u[1], u[2], *p[0], *p[1], *p[2], fs);
+    if (!(q >= 0) || q < worst) return false;
+  }
+  return true;
+}
+
 void apply_move(FaceMesh& fm, int i, const NodeMove& m) {
   fm.uv[i] = m.uv;
   fm.s[i] = m.s;

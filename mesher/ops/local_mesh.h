@@ -61,6 +61,12 @@ struct BallMeasure {
 BallMeasure measure_ball(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
                          const SurfaceSample& s, const std::vector<char>* lenient = nullptr);
 
+// Whether node i's triangles with i moved to (uv, s) all stay valid with a
+// shape of at least `worst`: measure_ball's valid and shape >= worst, without
+// its angles, and stopping at the first triangle that fails.
+bool ball_keeps_shape(const FaceMesh& fm, const FaceSurface& fs, const Balls& b, int i, const Vec2& uv,
+                      const SurfaceSample& s, double worst);
+
 // A node's new place (uv and the surface sample there), the decision of a
 // check that moves a node (check_smooth, check_rescue); ok false: it stays.
 struct NodeMove {

@@ -37,8 +37,7 @@ NodeMove check_smooth(const FaceMesh& fm, const FaceSurface& fs, const Balls& ba
       continue;  // outside what the surface can evaluate: stay
     }
     s.h = si.h;
-    const BallMeasure moved_to = measure_ball(fm, fs, balls, i, uv, s);
-    if (!moved_to.valid || moved_to.shape < old_q) continue;
+    if (!ball_keeps_shape(fm, fs, balls, i, uv, s, old_q)) continue;
     return {true, uv, s};
   }
   return {};
