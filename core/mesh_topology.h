@@ -33,26 +33,53 @@ inline void vertex_triangles(int num_vertices, const std::vector<std::array<int,
 }
 
 // Each triangle's neighbour across its side (k, k+1), -1 where the side is
-// on the boundary or used by more than two triangles.
+// on the boundary or used by more than two triangles. Sides are grouped by
+// their smaller vertex in compressed rows (linear in the triangles); ids far
+// sparser than the triangles are grouped by a sort instead.
 inline std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array<int, 3>>& tris) {
+  std::vector<std::array<int, 3>> nbr(tris.size(), {-1, -1, -1});
+  int nv = 0;
+  for (const auto& t : tris) nv = std::max({nv, t[0] + 1, t[1] + 1, t[2] + 1});
   struct Half {
     uint64_t key;
     int t, k;
   };
-  std::vector<Half> half;
-  half.reserve(tris.size() * 3);
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) half.push_back({edge_key(tris[t][k], tris[t][(k + 1) % 3]), t, k});
-  std::sort(half.begin(), half.end(), [](const Half& x, const Half& y) {
-    return x.key != y.key ? x.key < y.key : x.t < y.t;
-  });
-  std::vector<std::array<int, 3>> nbr(tris.size(), {-1, -1, -1});
-  for (size_t i = 0; i + 1 < half.size(); ++i)
-    if (half[i].key == half[i + 1].key && (i + 2 >= half.size() || half[i + 2].key != half[i].key) &&
-        (i == 0 || half[i - 1].key != half[i].key)) {
-      nbr[half[i].t][half[i].k] = half[i + 1].t;
-      nbr[half[i + 1].t][half[i + 1].k] = half[i].t;
+  std::vector<Half> half(tris.size() * 3);
+  // Pairs the sides of equal key in half[lo, hi), sorted by key: exactly two.
+  auto pair_up = [&](size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi;) {
+      size_t j = i + 1;
+      while (j < hi && half[j].key == half[i].key) ++j;
+      if (j == i + 2) {
+        nbr[half[i].t][half[i].k] = half[i + 1].t;
+        nbr[half[i + 1].t][half[i + 1].k] = half[i].t;
+      }
+      i = j;
     }
+  };
+  auto by_key = [](const Half& x, const Half& y) { return x.key < y.key; };
+  if (static_cast<size_t>(nv) > 4 * tris.size() + 16) {
+    for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) half[3 * t + k] = {edge_key(tris[t][k], tris[t][(k + 1) % 3]), t, k};
+    std::sort(half.begin(), half.end(), by_key);
+    pair_up(0, half.size());
+    return nbr;
+  }
+  std::vector<int> start(nv + 1, 0);
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = tris[t][k], b = tris[t][(k + 1) % 3];
+      half[fill[std::min(a, b)]++] = {edge_key(a, b), t, k};
+    }
+  for (int v = 0; v < nv; ++v) {
+    if (start[v + 1] - start[v] < 2) continue;
+    std::sort(half.begin() + start[v], half.begin() + start[v + 1], by_key);
+    pair_up(start[v], start[v + 1]);
+  }
   return nbr;
 }
 
