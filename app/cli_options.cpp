@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "sizing/options.h"
+#include "sizing/sources.h"
 
 namespace sizemesh {
 
@@ -94,6 +95,21 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
     if (opt.cli_lo < opt.cli_hi) cli->check(CLI::Range(opt.cli_lo, opt.cli_hi));
     cli->group(sizing);
   }
+  app.add_option("--source", cl.sources,
+                 "a region with its own element size, repeatable: 'box XMIN YMIN ZMIN XMAX YMAX ZMAX H [GROW]', "
+                 "'sphere|point X Y Z R H [GROW]', 'line|cylinder X0 Y0 Z0 X1 Y1 Z1 R H [GROW]' (model units; the "
+                 "size grows to h_max over GROW, else at beta)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              parse_source(text);
+              return std::string();
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+          },
+          "SOURCE", "size source"))
+      ->group(sizing);
   app.add_option("--config", cl.options.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json); a flag given on the command line wins over the file")->group(sizing);
@@ -120,6 +136,7 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
       if (std::chrono::steady_clock::now() - start > std::chrono::seconds(1)) std::cerr << "sizemesh: " << line << "\n";
     };
   }
+  for (const std::string& text : cl.sources) o.sizing.sources.push_back(parse_source(text));
   for (const SizingOption& opt : sizing_options()) {
     if (opt.set) opt.set(o.sizing, cl.words[opt.key]);
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);

@@ -21,6 +21,7 @@ struct RunCommandLine {
   std::map<std::string, std::string> words;  // choice options: the word given
   std::string farfield = "none", symmetry = "none", smoother = "exact";
   std::vector<std::string> mesh_union;  // component numbers, or "all"
+  std::vector<std::string> sources;     // --source texts (sizing/sources.h)
   CLI::Option* symmetry_at = nullptr;
 };
 

@@ -61,7 +61,7 @@ int run(const RunOptions& o) {
   if (!o.output.empty()) {
     meshing = true;
     mesh_model(*r, o, warn);
-    write_mesh(o.output, r->mesh, r->labels(), r->report.quality, r->target);
+    write_mesh(o.output, r->mesh, r->labels(), r->report.quality, r->target, r->limited_by);
     r->clock.lap("output");
     if (o.verbose) print_mesh_summary(r->report, std::cout);
   }

@@ -65,6 +65,7 @@ struct RunResult {
   std::optional<SizeQuery> query;  // once meshed
   SurfaceMesh mesh;
   std::vector<double> target;    // per mesh node: the size map's size there
+  std::vector<double> limited_by;  // per mesh node: the rule behind that size (sizing/limit_at.h)
   std::vector<std::string> warnings;  // one line each, without the "sizemesh: warning: " prefix
   bool meshed() const { return report.mesh != nullptr; }
   Topology topology;             // feature and virtual curves, composite faces

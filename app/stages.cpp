@@ -16,6 +16,7 @@
 #include "mesher/quality.h"
 #include "mesher/target_sizes.h"
 #include "sizing/initial_sizes.h"
+#include "sizing/limit_at.h"
 #include "sizing/options.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
@@ -180,6 +181,19 @@ void quality(RunResult& r, const RunOptions&, const WarningSink& warn) {
   const auto kept = kept_edges(r.mesh, model, r.topology);
   r.report.quality = mesh_quality(r.mesh, model, *r.query, &kept);
   r.target = target_sizes(r.mesh, *r.query);
+  // The rule behind each node's size, as the background shows it.
+  r.limited_by.assign(r.mesh.xyz.size(), -1.0);
+  std::vector<char> done(r.mesh.xyz.size(), 0);
+  int hint = -1;
+  for (size_t t = 0; t < r.mesh.tris.size(); ++t) {
+    if (t > 0 && r.mesh.tri_face[t] != r.mesh.tri_face[t - 1]) hint = -1;  // hints are per face
+    for (int k = 0; k < 3; ++k) {
+      const int n = r.mesh.tris[t][k];
+      if (done[n]) continue;
+      done[n] = 1;
+      r.limited_by[n] = limit_at(*r.query, r.bg, r.sizes, r.mesh.tri_face[t], r.mesh.tri_uv[t][k], r.mesh.xyz[n], hint);
+    }
+  }
   measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
   for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
   warn_local_intersections(r.report.quality, warn);

@@ -8,7 +8,8 @@ Writes into DIR (default: the current directory), each surface-with-edges with a
   <mesh>_target_size.png   the size asked for at each node (log scale)
   <mesh>_min_angle.png     each triangle's smallest angle (degrees)
   <bg>_h_smoothed.png      the size map on the background mesh (log scale)
-  <bg>_limited_by.png      what set each background vertex's size (curvature, proximity, h_max, ...)
+  <mesh>_limited_by.png    what set the size at each node (curvature, proximity, h_max, a source, ...)
+  <bg>_limited_by.png      what set each background vertex's size
 A field missing from its file is skipped with a note. Debian's ParaView renders through X
 only: without a display the script starts a virtual X server, Xvfb (Debian package xvfb), for itself.
 SIZEMESH_PARAVIEW_PYTHON, when set, is the folder of ParaView's Python package (put first on the path).
@@ -24,16 +25,17 @@ import sys
 if os.environ.get("SIZEMESH_PARAVIEW_PYTHON"):
     sys.path.insert(0, os.environ["SIZEMESH_PARAVIEW_PYTHON"])
 
-# Codes of sizemesh's Limit enum (sizing/size_map.h) as written to the background's limited_by.
+# Codes of sizemesh's Limit enum (sizing/size_map.h) as written to limited_by (mesh and background).
 LIMITS = ["h_max", "curvature", "face proximity", "curve length", "gap (fluid)", "thickness (solid)",
-          "user size", "h_min", "far-field size"]
+          "user size", "h_min", "far-field size", "size source"]
 LIMIT_COLOURS = [(0.65, 0.65, 0.65), (0.89, 0.10, 0.11), (0.22, 0.49, 0.72), (0.30, 0.69, 0.29),
                  (0.60, 0.31, 0.64), (1.00, 0.50, 0.00), (0.97, 0.51, 0.75), (0.65, 0.34, 0.16),
-                 (0.10, 0.75, 0.80)]
+                 (0.10, 0.75, 0.80), (1.00, 0.85, 0.10)]
 
 # (file, array, colour-bar title, scale): file "mesh" or "background"; scale "log", "linear" or "categories".
 FIELDS = [("mesh", "target_size", "target size", "log"),
           ("mesh", "min_angle", "min angle (deg)", "linear"),
+          ("mesh", "limited_by", "size limited by", "categories"),
           ("background", "h_smoothed", "size map (background)", "log"),
           ("background", "limited_by", "size limited by", "categories")]
 

@@ -31,6 +31,7 @@ void write_background_sizes(const std::string& path, const BackgroundMesh& bg, c
                    {{"h_curvature", shown(m.h_curvature)},
                     {"h_proximity", shown(m.h_proximity)},
                     {"h_user", shown(m.h_user)},
+                    {"h_source", shown(m.h_source)},
                     {"h_initial", m.h_initial},
                     {"h_smoothed", m.h},
                     {"limited_by", limit}},

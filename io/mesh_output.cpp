@@ -135,7 +135,7 @@ void check_mesh_format(const std::string& path) {
 }
 
 void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels, const MeshQuality& q,
-                const std::vector<double>& target_size) {
+                const std::vector<double>& target_size, const std::vector<double>& limited_by) {
   const std::string ext = extension(path);
   if (ext == ".msh") return write_msh(path, m, labels);
   if (ext == ".cgns") return write_cgns(path, m, labels);
@@ -149,8 +149,9 @@ void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels&
     source_ids[t] = labels.marker_of(m.tri_face[t]);
     composite_ids[t] = labels.composite_of(m.tri_face[t]);
   }
-  write_vtu(path, m.xyz, m.tris,
-            {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}},
+  std::vector<Field> point = {{"target_size", target_size}, {"classification_dim", dim}, {"classification_id", entity}};
+  if (limited_by.size() == m.xyz.size()) point.push_back({"limited_by", limited_by});
+  write_vtu(path, m.xyz, m.tris, point,
             {{"face_id", std::vector<double>(m.tri_face.begin(), m.tri_face.end())},
              {"source_face_id", source_ids},
              {"composite_id", composite_ids},

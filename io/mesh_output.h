@@ -24,7 +24,9 @@ void check_mesh_format(const std::string& path);
 // ... or a file that cannot be written.
 // labels: each face's marker, name and boundary kind (io/mesh_labels.h).
 // q: the mesh's quality (per-triangle smallest angle and sliver kind).
+// target_size, limited_by: per node, the size map's size and the rule behind
+// it (.vtu point data; limited_by may be empty).
 void write_mesh(const std::string& path, const SurfaceMesh& m, const MeshLabels& labels, const MeshQuality& q,
-                const std::vector<double>& target_size);
+                const std::vector<double>& target_size, const std::vector<double>& limited_by = {});
 
 }  // namespace sizemesh

@@ -24,7 +24,8 @@ namespace {
 
 // Per-triangle measures, computed in parallel and reduced afterwards.
 struct TriangleMeasure {
-  double area = 0, node_distance = 0, inner_node_distance = 0;
+  double area = 0, inner_node_distance = 0;
+  std::array<double, 3> corner_distance{};  // each corner from its triangle's face's surface at its uv
   bool zero_area = false, inverted = false;
   std::array<double, 3> edge_ratio{};  // length / h(midpoint) of edge (k, k+1)
 };
@@ -73,7 +74,7 @@ TriangleMeasure measure(const SurfaceMesh& m, const Geometry& g, const SizeField
       // triangle's: measured on its own face.
       if (own_uv[tr[k]].allFinite()) d = (g.eval_face(own, own_uv[tr[k]]).p - m.xyz[tr[k]]).norm();
     }
-    r.node_distance = std::max(r.node_distance, d);
+    r.corner_distance[k] = d;
     if (m.node_dim[tr[k]] == 2) r.inner_node_distance = std::max(r.inner_node_distance, d);
     // Size at the edge's midpoint, looked up in the face's uv space.
     const int k1 = (k + 1) % 3;
@@ -317,9 +318,20 @@ MeshQuality mesh_quality(const SurfaceMesh& m, const Geometry& g, const SizeFiel
     if (per[t].inverted && q.inverted_faces.size() < 20 &&
         std::find(q.inverted_faces.begin(), q.inverted_faces.end(), m.tri_face[t]) == q.inverted_faces.end())
       q.inverted_faces.push_back(m.tri_face[t]);
-    q.max_node_distance = std::max(q.max_node_distance, per[t].node_distance);
     q.max_inner_node_distance = std::max(q.max_inner_node_distance, per[t].inner_node_distance);
   }
+  // A node lies on the B-rep when one face of its triangles reproduces it:
+  // a corner of a composite face's triangle on a curve of the neighbouring
+  // B-rep face has no exact uv on the triangle's own face (its surface
+  // extended past the trim), the triangles of that neighbour do.
+  std::vector<double> node_distance(m.xyz.size(), HUGE_VAL);
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      double& d = node_distance[m.tris[t][k]];
+      d = std::min(d, per[t].corner_distance[k]);
+    }
+  for (double d : node_distance)
+    if (d < HUGE_VAL) q.max_node_distance = std::max(q.max_node_distance, d);
   count_forced_slivers(m, g, per, q);
   if (kept) {
     const std::vector<char> corner = at_feature_corners(m, *kept, q.min_angle);

@@ -68,7 +68,7 @@ struct MeshQuality {
   std::vector<std::array<int, 2>> intersecting_faces;  // face pairs with local intersections (first 20)
   std::vector<std::array<int, 2>> crossing_faces;      // face pairs with the other intersections (first 20)
   double max_inner_node_distance = 0;     // nodes inside faces, from their surface
-  double max_node_distance = 0;           // every corner, from its face's surface
+  double max_node_distance = 0;           // every node, from the nearest surface of its triangles' faces at its uv there
   double size_conformity = 0;             // share of edges of conforming length
   double area = 0;
 };

@@ -5,6 +5,7 @@
 #include "core/stopwatch.h"
 #include "sizing/curvature_size.h"
 #include "sizing/proximity_size.h"
+#include "sizing/sources.h"
 #include "sizing/user_size.h"
 
 namespace sizemesh {
@@ -72,6 +73,7 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   }
   m.t_gap = clock.lap();
   m.h_user = user_sizes(g, bg, p);
+  m.h_source = source_sizes(p.sources, bg.xyz, m.h_max, std::log(p.beta));
   m.t_user = clock.lap();
 
   const int nv = bg.num_vertices();
@@ -82,12 +84,12 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   m.limit.resize(nv);
   for (int v = 0; v < nv; ++v) {
     m.h_proximity[v] = std::min({h_face[v], h_curve[v], h_gap.fluid[v], h_gap.solid[v]});
-    // h_a = max(h_min, min(h_d, h_c, h_u, h_max)), remembering which term won.
+    // h_a = max(h_min, min(h_d, h_c, h_u, h_s, h_max)), remembering which term won.
     std::pair<double, Limit> best{cap[v], cap[v] == m.h_max ? Limit::HMax : Limit::FarField};
     for (auto c : {std::make_pair(m.h_curvature[v], Limit::Curvature), std::make_pair(h_face[v], Limit::FaceProximity),
                    std::make_pair(h_curve[v], Limit::CurveLength), std::make_pair(h_gap.fluid[v], Limit::Gap),
                    std::make_pair(h_gap.solid[v], Limit::Thickness),
-                   std::make_pair(m.h_user[v], Limit::User)})
+                   std::make_pair(m.h_user[v], Limit::User), std::make_pair(m.h_source[v], Limit::Source)})
       if (c.first < best.first) best = c;
     if (best.first < m.h_min) best = {m.h_min, Limit::HMin};
     m.h_initial[v] = best.first;

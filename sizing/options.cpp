@@ -51,6 +51,7 @@ std::string remedy(Limit l) {
     case Limit::User: return "the config's local sizes";
     case Limit::HMin: return flag_of("h_min");
     case Limit::FarField: return "";
+    case Limit::Source: return "the sources' sizes";
   }
   return flag_of("h_min");
 }

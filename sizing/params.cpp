@@ -79,6 +79,56 @@ void read_map(const json& j, const std::string& section, std::map<int, T>& m, F 
     m[parse_id(it.key(), section)] = convert(it.value(), section + "." + it.key());
 }
 
+Vec3 point3(const json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    throw Error("config: " + what + " must be a list of three numbers [x, y, z]");
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+// "sources": [{"type": "box", "min": [..], "max": [..], "size": h, "grow": r}, ...]
+std::vector<SizeSource> read_sources(const json& j) {
+  if (!j.is_array()) throw Error("config: 'sources' must be a list of objects");
+  std::vector<SizeSource> out;
+  for (size_t i = 0; i < j.size(); ++i) {
+    const json& o = j[i];
+    const std::string what = "sources[" + std::to_string(i) + "]";
+    if (!o.is_object() || !o.contains("type") || !o["type"].is_string())
+      throw Error("config: " + what + " must be an object with a \"type\" (point, sphere, line, cylinder or box)");
+    const std::string type = o["type"].get<std::string>();
+    SizeSource s;
+    std::vector<std::string> keys;
+    if (type == "point" || type == "sphere") {
+      s.kind = type == "point" ? SizeSource::Kind::Point : SizeSource::Kind::Sphere;
+      keys = {"center", "radius"};
+    } else if (type == "line" || type == "cylinder") {
+      s.kind = type == "line" ? SizeSource::Kind::Line : SizeSource::Kind::Cylinder;
+      keys = {"from", "to", "radius"};
+    } else if (type == "box") {
+      s.kind = SizeSource::Kind::Box;
+      keys = {"min", "max"};
+    } else {
+      throw Error("config: " + what + " has type '" + type + "'; use point, sphere, line, cylinder or box");
+    }
+    keys.push_back("size");
+    for (const std::string& k : keys)
+      if (!o.contains(k)) throw Error("config: " + what + " (" + type + ") needs \"" + k + "\"");
+    for (auto it = o.begin(); it != o.end(); ++it)
+      if (it.key() != "type" && it.key() != "grow" && std::find(keys.begin(), keys.end(), it.key()) == keys.end())
+        throw Error("config: " + what + " (" + type + ") has unknown key '" + it.key() + "'");
+    if (o.contains("center")) s.a = point3(o["center"], what + ".center");
+    if (o.contains("from")) s.a = point3(o["from"], what + ".from");
+    if (o.contains("to")) s.b = point3(o["to"], what + ".to");
+    if (o.contains("min")) s.a = point3(o["min"], what + ".min");
+    if (o.contains("max")) s.b = point3(o["max"], what + ".max");
+    if (o.contains("radius")) s.radius = number(o["radius"], what + ".radius");
+    s.size = number(o["size"], what + ".size");
+    if (o.contains("grow")) s.grow = number(o["grow"], what + ".grow");
+    validate_source(s, "config: " + what);
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace
 
 void validate(const SizingParams& p, double diagonal, int points, int curves, int faces) {
@@ -109,6 +159,7 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   check_size(p.point_size, "point");
   check_size(p.curve_size, "curve");
   check_size(p.face_size, "face");
+  for (size_t i = 0; i < p.sources.size(); ++i) validate_source(p.sources[i], "source " + std::to_string(i + 1));
 }
 
 void remap_face_ids(SizingParams& p, const std::vector<int>& source, int sewn_faces) {
@@ -154,7 +205,7 @@ void read_config(const std::string& path, SizingParams& p) {
   }
   if (!j.is_object()) throw Error("config file '" + path + "' must hold a JSON object");
   std::set<std::string> known = {"curve_phi_c", "face_phi_c", "face_mu_d", "face_beta",
-                                 "point_size",  "curve_size", "face_size"};
+                                 "point_size",  "curve_size", "face_size", "sources"};
   for (const SizingOption& o : sizing_options()) known.insert(o.key);
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("config: unknown key '" + it.key() + "'");
@@ -182,6 +233,10 @@ void read_config(const std::string& path, SizingParams& p) {
   if (j.contains("point_size")) read_map(j["point_size"], "point_size", p.point_size, user_size);
   if (j.contains("curve_size")) read_map(j["curve_size"], "curve_size", p.curve_size, user_size);
   if (j.contains("face_size")) read_map(j["face_size"], "face_size", p.face_size, user_size);
+  if (j.contains("sources")) {
+    const std::vector<SizeSource> more = read_sources(j["sources"]);
+    p.sources.insert(p.sources.end(), more.begin(), more.end());
+  }
 }
 
 void size_domain_faces(SizingParams& p, const std::vector<int>& domain_faces, double element_size) {

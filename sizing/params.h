@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/size_field.h"
+#include "sizing/sources.h"
 
 namespace sizemesh {
 
@@ -45,6 +46,9 @@ struct SizingParams {
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;
+  // Regions of space with their own size (sizing/sources.h): the config's
+  // "sources" and the command line's --source, all of them.
+  std::vector<SizeSource> sources;
   // Largest size per face in place of h_max (the far field and the symmetry
   // plane grade up to their own size); a vertex takes the least of its faces'.
   std::map<int, double> face_h_max;

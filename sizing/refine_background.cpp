@@ -1,21 +1,27 @@
 #include "sizing/refine_background.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include "core/triangle_bvh.h"
 #include "sizing/curvature_size.h"
 #include "sizing/initial_sizes.h"
 #include "sizing/smooth.h"
+#include "sizing/sources.h"
 #include "sizing/triangle_estimate.h"
 
 namespace sizemesh {
 namespace {
 
 // What the curvature would allow at the middle of edge (a, b): the smallest
-// curvature size over the faces holding both ends, at the uv midpoint there.
+// curvature size over the faces holding both ends, at the uv midpoint there,
+// and what the size sources ask there (a source smaller than the triangles
+// around it is found the same way as a curvature peak they step over).
 // A split where this is no larger than the ends' sizes would add a vertex
 // that only repeats them (a leading edge at h_min, all along).
-double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, int a, int b) {
-  double h = kNoLimit;
+double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double h_max,
+                               int a, int b) {
+  double h = source_size(p.sources, 0.5 * (bg.xyz[a] + bg.xyz[b]), h_max, std::log(p.beta));
   for (int ua = bg.use_start[a]; ua < bg.use_start[a + 1]; ++ua)
     for (int ub = bg.use_start[b]; ub < bg.use_start[b + 1]; ++ub) {
       const int f = bg.use_face[ua];
@@ -68,12 +74,12 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
       for (double x : {0.25, 0.5})
         gain = std::max(gain, std::min(cap, lo + m.edge_log_beta[e] * x * l) / (lo + x * (hi - lo)));
       if (!(gain > kRefineGain) && !(m.h_min * kCurvatureMiss < linear)) continue;
-      const double curved = midpoint_curvature_size(g, bg, p, a, b);
+      const double curved = midpoint_curvature_size(g, bg, p, m.h_max, a, b);
       // Room to grow that the curvature there allows, or a curvature the ends miss.
       if ((gain > kRefineGain && curved > kRefineGain * linear) || std::max(curved, m.h_min) * kCurvatureMiss < linear)
         split.push_back(e);
     }
-    // A curvature peak inside a triangle: its longest edge is split.
+    // A curvature peak (or a size source) inside a triangle: its longest edge is split.
     for (const FacePatch& patch : bg.patches)
       for (size_t t = 0; t < patch.tris.size(); ++t) {
         const int gt = patch.global_tri[t];
@@ -87,8 +93,29 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
         for (const Vec3& w : kSamples) {
           const Vec2 c = w[0] * patch.uv[lt[0]] + w[1] * patch.uv[lt[1]] + w[2] * patch.uv[lt[2]];
           const double linear = w[0] * hv[0] + w[1] * hv[1] + w[2] * hv[2];
-          missed |= std::max(face_curvature_size(g, patch.face, c, p), m.h_min) * kCurvatureMiss < linear;
+          double wanted = face_curvature_size(g, patch.face, c, p);
+          if (!p.sources.empty()) {
+            const Vec3 x = w[0] * bg.xyz[patch.vertex[lt[0]]] + w[1] * bg.xyz[patch.vertex[lt[1]]] +
+                           w[2] * bg.xyz[patch.vertex[lt[2]]];
+            wanted = std::min(wanted, source_size(p.sources, x, m.h_max, std::log(p.beta)));
+          }
+          missed |= std::max(wanted, m.h_min) * kCurvatureMiss < linear;
           if (missed) break;
+        }
+        // A source smaller than the triangle may lie between those samples:
+        // also the triangle's point closest to each source's centre.
+        for (size_t k = 0; k < p.sources.size() && !missed; ++k) {
+          const Vec3& A = bg.xyz[patch.vertex[lt[0]]];
+          const Vec3& B = bg.xyz[patch.vertex[lt[1]]];
+          const Vec3& C = bg.xyz[patch.vertex[lt[2]]];
+          const SizeSource& src = p.sources[k];
+          const Vec3 centre = src.kind == SizeSource::Kind::Point || src.kind == SizeSource::Kind::Sphere
+                                  ? src.a
+                                  : Vec3(0.5 * (src.a + src.b));
+          const Vec3 w = TriangleBVH::closest_barycentric(centre, A, B, C);
+          const double linear = w[0] * hv[0] + w[1] * hv[1] + w[2] * hv[2];
+          const double wanted = src.size_at(w[0] * A + w[1] * B + w[2] * C, m.h_max, std::log(p.beta));
+          missed = std::max(wanted, m.h_min) * kCurvatureMiss < linear;
         }
         if (!missed) continue;
         split.push_back(longest_edge(bg, gt));

@@ -13,6 +13,7 @@ const char* limit_name(Limit l) {
     case Limit::User: return "user size";
     case Limit::HMin: return "h_min";
     case Limit::FarField: return "far-field size";
+    case Limit::Source: return "size source";
   }
   return "?";
 }

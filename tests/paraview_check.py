@@ -16,7 +16,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 VIEW_SCRIPT = os.path.join(HERE, "..", "examples", "paraview_view.py")
 SIZE = (800, 480)
-EXPECTED = ["M6_target_size.png", "M6_min_angle.png", "M6_bg_h_smoothed.png", "M6_bg_limited_by.png"]
+EXPECTED = ["M6_target_size.png", "M6_min_angle.png", "M6_limited_by.png", "M6_bg_h_smoothed.png",
+            "M6_bg_limited_by.png"]
 # The model's part of a picture (the colour bar is on the right, past 80% of the width) must be at
 # least DRAWN covered, at least COLOURED of that in saturated colours, with at least COLOURS of them.
 DRAWN, COLOURED, COLOURS = 0.10, 0.05, 12

@@ -115,6 +115,9 @@ struct Mesh : Run {
     return column(std::vector<int>(s.begin(), s.end()));
   }
   py::array_t<double> target_size() const { return column(result->target); }
+  py::array_t<int> limited_by() const {
+    return column(std::vector<int>(result->limited_by.begin(), result->limited_by.end()));
+  }
   py::object report() const { return to_python(report_json(result->report)); }
   std::vector<std::pair<int, std::string>> failures() const {
     std::vector<std::pair<int, std::string>> out;
@@ -125,7 +128,7 @@ struct Mesh : Run {
     check_writable(path);
     check_mesh_format(path);
     py::gil_scoped_release unlocked;
-    write_mesh(path, result->mesh, result->labels(), result->report.quality, result->target);
+    write_mesh(path, result->mesh, result->labels(), result->report.quality, result->target, result->limited_by);
   }
   py::object to_meshio() const {
     py::module_ meshio = py::module_::import("meshio");
@@ -142,6 +145,7 @@ struct Mesh : Run {
     cell_data["min_angle"] = one(min_angle());
     cell_data["sliver"] = one(sliver());
     point_data["target_size"] = target_size();
+    point_data["limited_by"] = limited_by();
     return meshio.attr("Mesh")(points(), cells, py::arg("point_data") = point_data, py::arg("cell_data") = cell_data);
   }
 };
@@ -247,6 +251,8 @@ PYBIND11_MODULE(sizemesh, m) {
       .def_property_readonly("sliver", &Mesh::sliver,
                              "per triangle: 0 not under 12 degrees, 1 forced by the CAD, 2 avoidable")
       .def_property_readonly("target_size", &Mesh::target_size, "the size map's size at each node")
+      .def_property_readonly("limited_by", &Mesh::limited_by,
+                             "the rule behind each node's size (codes as SizeMap.limited_by's names, in order)")
       .def_property_readonly("report", &Mesh::report, "the JSON report of the command line, as a dict")
       .def_property_readonly("failures", &Mesh::failures, "faces that could not be meshed: (face, reason)")
       .def_property_readonly("warnings", [](const Mesh& x) { return x.result->warnings; })

@@ -46,9 +46,13 @@ def main():
         data = m.cell_data[name][0]
         assert len(data) == len(tris), name
         assert np.all(np.isfinite(data)), name
-    for name in ("target_size", "classification_dim", "classification_id"):
+    for name in ("target_size", "limited_by", "classification_dim", "classification_id"):
         assert len(m.point_data[name]) == len(m.points), name
     assert m.point_data["target_size"].min() > 0
+    # Codes of sizing/size_map.h's Limit: the M6 is sized by curvature most of all.
+    codes = m.point_data["limited_by"].astype(int)
+    assert codes.min() >= -1 and codes.max() <= 9
+    assert np.count_nonzero(codes == 1) > 0.3 * len(codes)
     reference = triangles_by_marker(m.points, tris, m.cell_data["source_face_id"][0])
 
     g = meshio.read(msh)

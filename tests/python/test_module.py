@@ -42,6 +42,7 @@ def assert_same_as_cli(mesh, cli_vtu):
     assert np.array_equal(mesh.markers, cli_vtu.cell_data["source_face_id"][0].astype(int))
     assert np.array_equal(mesh.min_angle, cli_vtu.cell_data["min_angle"][0])
     assert np.array_equal(mesh.target_size, cli_vtu.point_data["target_size"])
+    assert np.array_equal(mesh.limited_by, cli_vtu.point_data["limited_by"].astype(int))
 
 
 def test_arrays_are_the_cli_mesh_to_the_last_bit(tmp_path):
