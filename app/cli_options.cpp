@@ -35,6 +35,14 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
   app.add_option("model", cl.options.input, "CAD model: .step/.stp, .iges/.igs or .brep")->required();
   app.add_option("-o,--output", cl.options.output, "output surface mesh: .vtu (ParaView), .msh (Gmsh 4.1), .stl, .cgns (CFD solvers), .mesh (Medit, Mmg) or .smesh (TetGen)");
   app.add_option("--report", cl.options.report, "write a JSON report: counts, quality, conformity, timings, failed faces");
+  app.add_option("--family", cl.options.family,
+                 "write a mesh family for grid convergence: N levels OUT.L1.ext (coarsest) .. OUT.LN.ext from one "
+                 "size map scaled per level (reports likewise), instead of OUT")
+      ->check(CLI::Range(1, 8));
+  app.add_option("--family-ratio", cl.options.family_ratio,
+                 "triangles of each family level against the previous one (sizes scale by its inverse square root)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.1, 16.0));
   app.add_option("--threads", cl.options.meshing.threads, "threads for meshing faces (0: all cores); the mesh is the same")
       ->capture_default_str()->check(CLI::Range(0, 1024));
   app.add_option("--background", cl.options.background, "write the background mesh with its size fields (.vtu)");

@@ -1,6 +1,8 @@
 #include "app/pipeline.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -10,6 +12,8 @@
 #include "io/background_output.h"
 #include "io/mesh_output.h"
 #include "io/report.h"
+#include "sizing/family.h"
+#include "sizing/triangle_estimate.h"
 
 namespace sizemesh {
 
@@ -17,7 +21,62 @@ namespace {
 
 void print_to_stderr(const std::string& line) { std::cerr << "sizemesh: warning: " << line << "\n"; }
 
+// The levels of a family from one sized run, each meshed and written (with
+// its report) before the next starts; the exit code is the worst level's.
+int run_family(const RunResult& sized, const RunOptions& o, const WarningSink& warn) {
+  std::vector<int> triangles;
+  int code = kOk;
+  for (int level = 1; level <= o.family; ++level) {
+    const std::unique_ptr<RunResult> r = family_level(sized, level, o.family, o.family_ratio);
+    if (o.verbose)
+      std::cout << "level " << level << " of " << o.family << ": sizes x "
+                << family_scale(level, o.family, o.family_ratio) << "\n";
+    mesh_model(*r, o, warn);
+    write_mesh(level_path(o.output, level), r->mesh, r->labels(), r->report.quality, r->target, r->limited_by);
+    r->clock.lap("output");
+    if (o.verbose) print_mesh_summary(r->report, std::cout);
+    if (!o.report.empty()) write_report(level_path(o.report, level), r->report);
+    triangles.push_back(r->report.quality.triangles);
+    code = std::max(code, r->exit_code());
+  }
+  if (o.verbose) {
+    std::cout << "family:";
+    for (size_t k = 0; k < triangles.size(); ++k) {
+      std::cout << (k ? ";" : "") << " L" << k + 1 << " " << triangles[k] << " triangles";
+      if (k > 0) std::cout << " (" << std::setprecision(3) << double(triangles[k]) / std::max(1, triangles[k - 1]) << "x)";
+    }
+    std::cout << "\n";
+  }
+  return code;
+}
+
 }  // namespace
+
+std::unique_ptr<RunResult> family_level(const RunResult& sized, int level, int levels, double ratio) {
+  const double s = family_scale(level, levels, ratio);
+  auto r = std::make_unique<RunResult>(sized.clock.enabled());
+  r->report = sized.report;
+  r->model = sized.model;
+  r->params = scaled_rules(sized.params, s);
+  r->bg = sized.bg;
+  r->sizes = scaled_map(sized.sizes, s);
+  r->topology = sized.topology;
+  r->warnings = sized.warnings;
+  r->estimate = estimate_triangles(r->bg, r->sizes.h, r->sizes.limit, r->model->num_faces());
+  r->report.estimated_triangles = r->estimate.total;
+  r->report.model = &*r->model;
+  r->report.sizes = &r->sizes;
+  r->report.topology = &r->topology;
+  r->report.mesh = nullptr;
+  return r;
+}
+
+std::string level_path(const std::string& path, int level) {
+  const std::filesystem::path p(path);
+  std::filesystem::path out = p;
+  out.replace_filename(p.stem().string() + ".L" + std::to_string(level) + p.extension().string());
+  return out.string();
+}
 
 std::unique_ptr<Watchdog> preparation_hard_stop(const CadFile& cad, const RunOptions& o) {
   if (!(o.preparation_grace > 0)) return nullptr;
@@ -55,9 +114,16 @@ int run(const RunOptions& o) {
     if (meshing) later.push_back(line);
     else print_to_stderr(line);
   };
+  if (o.family > 0 && o.output.empty()) throw Error("a mesh family (--family) needs an output file (-o)");
   std::unique_ptr<RunResult> r = size_model(o, warn);
   if (o.output.empty()) warn_not_united(r->model->info().preparation, warn);
   if (!o.background.empty()) write_background_sizes(o.background, r->bg, r->sizes);
+  if (!o.output.empty() && o.family > 0) {
+    meshing = true;
+    const int code = run_family(*r, o, warn);
+    for (const auto& line : later) print_to_stderr(line);
+    return code;
+  }
   if (!o.output.empty()) {
     meshing = true;
     mesh_model(*r, o, warn);

@@ -41,7 +41,22 @@ struct RunOptions {
   // its union budget and this many seconds more before the process ends
   // with an error; 0 none.
   double preparation_grace = 0;
+  // A mesh family (sizing/family.h): this many levels, output.L1.ext
+  // (coarsest) .. output.Ln.ext, about family_ratio times the triangles per
+  // level; 0: one mesh, `output` itself.
+  int family = 0;
+  double family_ratio = 3.0;
 };
+
+// The file of level k of a family: "a/m.vtu" -> "a/m.L2.vtu".
+std::string level_path(const std::string& path, int level);
+
+struct RunResult;
+// Level `level` of `levels` of a mesh family (sizing/family.h) from a sized
+// run (sizing_stages() done): a run of its own holding the model, the
+// background and the topology, with the sizes and accuracy rules scaled and
+// the estimate made again, ready for meshing_stages().
+std::unique_ptr<RunResult> family_level(const RunResult& sized, int level, int levels, double ratio);
 
 // The command line's hard stop around the preparation of `cad`: the union's
 // attempts are told to stop at its budget; this catches one that does not
@@ -85,6 +100,8 @@ struct RunResult {
     return mesh.failures.empty() && !apart && !crossing && !open ? kOk : kPartial;
   }
 };
+
+std::unique_ptr<RunResult> family_level(const RunResult& sized, int level, int levels, double ratio);
 
 // Paper 3 (sizing_stages(), app/stages.h): loading, preparation, background
 // mesh, initial sizes, smoothing and the estimate; prints the sizing summary

@@ -21,6 +21,8 @@ class Progress {
   void lap(const std::string& stage);
   // Faces meshed so far; safe to call from several threads.
   void faces(int done, int total);
+  // Whether it prints progress at all (a run's verbosity).
+  bool enabled() const { return enabled_; }
 
  private:
   using Clock = std::chrono::steady_clock;

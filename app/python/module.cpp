@@ -209,6 +209,27 @@ Mesh mesh(const py::object& path, const py::kwargs& kwargs) {
   return m;
 }
 
+// The levels of a mesh family (sizing/family.h), coarsest first, from one sized run.
+std::vector<Mesh> mesh_family(const py::object& path, int levels, double ratio, const py::kwargs& kwargs) {
+  if (levels < 1 || levels > 8) throw Error("levels must be 1 to 8, got " + std::to_string(levels));
+  if (!(ratio >= 1.1 && ratio <= 16)) throw Error("ratio must be 1.1 to 16, got " + std::to_string(ratio));
+  Run run = sized(path, kwargs);
+  std::vector<Mesh> out;
+  for (int level = 1; level <= levels; ++level) {
+    Mesh m;
+    m.options = run.options;
+    {
+      py::gil_scoped_release unlocked;
+      std::shared_ptr<RunResult> r = family_level(*run.result, level, levels, ratio);
+      std::vector<std::string>& warnings = r->warnings;
+      mesh_model(*r, run.options, [&warnings](const std::string& w) { warnings.push_back(w); });
+      m.result = std::move(r);
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 py::dict info_of(const Model& model) {
   const ModelInfo& i = model.info();
   py::dict d;
@@ -278,6 +299,10 @@ PYBIND11_MODULE(sizemesh, m) {
   m.def("mesh", &mesh, py::arg("path"),
         "Mesh a STEP, IGES or BREP file; keyword arguments are the command line's options "
         "(h_min=0.1 for --h-min, sew=False for --no-sew, farfield='sphere', ...)");
+  m.def("mesh_family", &mesh_family, py::arg("path"), py::arg("levels") = 3, py::arg("ratio") = 3.0,
+        "A mesh family for grid-convergence studies: `levels` meshes, coarsest first, from one size map scaled "
+        "so that each has about `ratio` times the triangles of the one before (the middle level is the map as "
+        "built); keyword arguments as for mesh()");
   m.def(
       "size_map",
       [](const py::object& path, const py::kwargs& kwargs) {

@@ -122,6 +122,19 @@ def test_a_partial_mesh_is_returned_with_its_failures(tmp_path):
     assert_same_as_cli(m, ref)
 
 
+def test_a_mesh_family_grows_by_its_ratio_around_the_default_mesh():
+    family = sizemesh.mesh_family(M6, levels=3, ratio=3.0)
+    n = [len(m.triangles) for m in family]
+    assert 2.5 <= n[1] / n[0] <= 3.5 and 2.5 <= n[2] / n[1] <= 3.5, n
+    default = sizemesh.mesh(M6)
+    assert np.array_equal(family[1].points, default.points)
+    assert np.array_equal(family[1].triangles, default.triangles)
+    for m in family:
+        assert m.report["mesh"]["boundary_edges"] == 0 and m.report["mesh"]["self_intersecting_pairs"] == 0
+    with pytest.raises(sizemesh.Error, match="levels must be 1 to 8"):
+        sizemesh.mesh_family(M6, levels=9)
+
+
 def test_size_map_queries_at_its_vertices_give_their_sizes():
     s = sizemesh.size_map(M6)
     assert s.sizes.shape == (len(s.points),)
