@@ -118,6 +118,10 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
           },
           "SOURCE", "size source"))
       ->group(sizing);
+  app.add_flag("--aero", cl.aero,
+               "the gridding workshops' defaults: --le-spacing and --te-spacing 0.001 (0.1% of the local chord) "
+               "where not given, beta 1.2")
+      ->group(sizing);
   app.add_option("--config", cl.options.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
                  "(see examples/sizing.json); a flag given on the command line wins over the file")->group(sizing);
@@ -145,6 +149,10 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
     };
   }
   for (const std::string& text : cl.sources) o.sizing.sources.push_back(parse_source(text));
+  if (cl.aero) {
+    if (app.count(flag_of("le_spacing")) == 0) o.sizing.le_spacing = SizingParams::kAeroSpacing;
+    if (app.count(flag_of("te_spacing")) == 0) o.sizing.te_spacing = SizingParams::kAeroSpacing;
+  }
   for (const SizingOption& opt : sizing_options()) {
     if (opt.set) opt.set(o.sizing, cl.words[opt.key]);
     if (app.count(opt.flag) > 0) o.sizing_from_cli.insert(opt.key);

@@ -22,6 +22,7 @@ struct RunCommandLine {
   std::string farfield = "none", symmetry = "none", smoother = "exact";
   std::vector<std::string> mesh_union;  // component numbers, or "all"
   std::vector<std::string> sources;     // --source texts (sizing/sources.h)
+  bool aero = false;                    // --aero: the workshops' spacings where not given
   CLI::Option* symmetry_at = nullptr;
 };
 

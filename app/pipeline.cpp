@@ -67,6 +67,7 @@ std::unique_ptr<RunResult> family_level(const RunResult& sized, int level, int l
   r->report.model = &*r->model;
   r->report.sizes = &r->sizes;
   r->report.topology = &r->topology;
+  r->report.wing = &r->params.wing;
   r->report.mesh = nullptr;
   return r;
 }

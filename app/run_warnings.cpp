@@ -51,12 +51,21 @@ void warn_open(const MeshQuality& q, const Preparation& p, bool faces_failed, co
   warn(msg.str());
 }
 
-void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r) {
+void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, const std::vector<double>& limited_by,
+                   double h_min, RunReport& r) {
   double n = 0, area = 0, total = 0;
+  auto asked = [&](int node) {
+    if (limited_by.size() != target.size()) return false;
+    const int l = static_cast<int>(limited_by[node]);
+    return l == static_cast<int>(Limit::Aero) || l == static_cast<int>(Limit::Source) ||
+           l == static_cast<int>(Limit::User);
+  };
   for (const auto& t : m.tris) {
     const double a = 0.5 * (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]).norm();
     total += a;
-    if ((target[t[0]] + target[t[1]] + target[t[2]]) / 3 <= 1.05 * h_min) n += 1, area += a;
+    const double mean = (target[t[0]] + target[t[1]] + target[t[2]]) / 3;
+    if (mean <= 1.05 * h_min && mean >= 0.95 * h_min && !asked(t[0]) && !asked(t[1]) && !asked(t[2]))
+      n += 1, area += a;
   }
   r.at_h_min_share = m.tris.empty() ? 0 : n / m.tris.size();
   r.at_h_min_area_share = total > 0 ? area / total : 0;

@@ -43,7 +43,11 @@ void warn_crossings(const MeshQuality& q, const Preparation& p, const WarningSin
 // every face meshed and every component united (exit 3).
 void warn_open(const MeshQuality& q, const Preparation& p, bool faces_failed, const WarningSink& warn);
 // Shares of the triangles and of the area whose target size is within 5% of h_min.
-void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, double h_min, RunReport& r);
+// Triangles asked below h_min (a leading edge's chordwise spacing, a
+// source) or at a node sized by such a request are the user's, not h_min's:
+// not counted. `limited_by` per node (sizing/limit_at.h), may be empty.
+void measure_h_min(const SurfaceMesh& m, const std::vector<double>& target, const std::vector<double>& limited_by,
+                   double h_min, RunReport& r);
 // One warning line when h_min sets more than 5% of the triangles.
 void warn_h_min(const RunReport& r, double h_min, const WarningSink& warn);
 // Faces the B-rep tessellation left without a background mesh: their sizes

@@ -20,6 +20,7 @@
 #include "sizing/options.h"
 #include "sizing/refine_background.h"
 #include "sizing/size_query.h"
+#include "topology/wing_features.h"
 
 namespace sizemesh {
 namespace {
@@ -79,6 +80,8 @@ void topology(RunResult& r, const RunOptions&, const WarningSink&) {
   for (const auto& e : p.curve_phi_c_deg) kept.insert(e.first);
   r.topology = build_topology(model, face_class, kept, p.feature_angle_deg, p.composite);
   r.report.topology = &r.topology;
+  r.params.wing = find_wing_features(model, r.topology);
+  r.report.wing = &r.params.wing;
   if (r.topology.enabled) {
     r.params.virtual_curve.assign(model.num_curves(), 0);
     for (int c = 1; c <= model.num_curves(); ++c) r.params.virtual_curve[c - 1] = !r.topology.hard(c);
@@ -119,6 +122,15 @@ void estimate(RunResult& r, const RunOptions& o, const WarningSink&) {
             << " edges split in " << report.refinement.rounds << " rounds, " << report.refinement.flips
             << " edges flipped)\n";
   print_sizing_summary(r.bg, r.sizes, report.smoothing, std::cout);
+  const WingFeatures& w = r.params.wing;
+  if (!w.empty())
+    std::cout << "wing features: " << w.leading.size() << " leading edge curves (" << w.leading_length << " long), "
+              << w.trailing.size() << " trailing edge curves (" << w.trailing_length << "), chord " << w.chord_min
+              << " to " << w.chord_max << "; chordwise spacing ";
+  if (!w.empty() && (r.params.le_spacing > 0 || r.params.te_spacing > 0))
+    std::cout << r.params.le_spacing << " and " << r.params.te_spacing << " of the local chord\n";
+  else if (!w.empty())
+    std::cout << "off (--le-spacing, --te-spacing, --aero)\n";
   std::cout << "estimate: about " << static_cast<long long>(r.estimate.total + 0.5) << " triangles\n";
 }
 
@@ -194,7 +206,7 @@ void quality(RunResult& r, const RunOptions&, const WarningSink& warn) {
       r.limited_by[n] = limit_at(*r.query, r.bg, r.sizes, r.mesh.tri_face[t], r.mesh.tri_uv[t][k], r.mesh.xyz[n], hint);
     }
   }
-  measure_h_min(r.mesh, r.target, r.sizes.h_min, r.report);
+  measure_h_min(r.mesh, r.target, r.limited_by, r.sizes.h_min, r.report);
   for (const auto& f : r.mesh.failures) warn("face " + std::to_string(f.face) + " was not meshed: " + f.reason);
   warn_local_intersections(r.report.quality, warn);
   warn_crossings(r.report.quality, model.info().preparation, warn);

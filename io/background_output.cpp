@@ -32,6 +32,7 @@ void write_background_sizes(const std::string& path, const BackgroundMesh& bg, c
                     {"h_proximity", shown(m.h_proximity)},
                     {"h_user", shown(m.h_user)},
                     {"h_source", shown(m.h_source)},
+                    {"h_aero", shown(m.h_aero)},
                     {"h_initial", m.h_initial},
                     {"h_smoothed", m.h},
                     {"limited_by", limit}},

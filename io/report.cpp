@@ -48,6 +48,13 @@ nlohmann::json report_json(const RunReport& r) {
                                             {"small_angle", r.virtual_reasons.small_angle},
                                             {"smooth", r.virtual_reasons.smooth}}}};
   }
+  if (r.wing)
+    j["wing"] = {{"leading_edges", r.wing->leading},
+                 {"trailing_edges", r.wing->trailing},
+                 {"leading_length", r.wing->leading_length},
+                 {"trailing_length", r.wing->trailing_length},
+                 {"chord_min", r.wing->chord_min},
+                 {"chord_max", r.wing->chord_max}};
   j["preparation"] = {{"components", components},
                       {"union_requested", prep.union_requested},
                       {"fused", prep.fused},

@@ -13,6 +13,7 @@
 #include "cad/model.h"
 #include "mesher/composite_remesh.h"
 #include "topology/virtual_reasons.h"
+#include "topology/wing_features.h"
 #include "mesher/cut_faces.h"
 #include "mesher/mesh_union.h"
 #include "mesher/quality.h"
@@ -40,6 +41,7 @@ struct RunReport {
   MeshUnionResult mesh_union;  // components united at mesh level (none when every union was a B-rep one)
   CutFacesResult cut_faces;    // the faces that union cut, meshed again
   const Topology* topology = nullptr;
+  const WingFeatures* wing = nullptr;  // leading and trailing edges found
   CompositeRemeshResult composite;  // the mesh re-meshed across virtual curves
   VirtualReasons virtual_reasons;   // why each crossed curve was in the way
   std::vector<std::pair<std::string, double>> seconds;  // stage, wall time

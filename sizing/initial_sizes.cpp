@@ -18,6 +18,31 @@ double face_beta(const SizingParams& p, int face) {
   return it == p.face_beta.end() ? p.beta : it->second;
 }
 
+// Chordwise spacing on the wing's leading and trailing edges (their curves
+// and end points): the spacing share times the chord there.
+std::vector<double> aero_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
+  std::vector<double> h(bg.num_vertices(), kNoLimit);
+  if (!(p.le_spacing > 0) && !(p.te_spacing > 0)) return h;
+  const WingFeatures& w = p.wing;
+  auto apply = [&](const std::vector<int>& curves, const std::vector<int>& composite, double share, bool leading) {
+    if (!(share > 0)) return;
+    for (size_t i = 0; i < curves.size(); ++i) {
+      const int c = curves[i];
+      auto size_at = [&](int v) {
+        const double chord = w.chord_at(bg.xyz[v], composite[i], leading);
+        if (chord > 0) h[v] = std::min(h[v], share * chord);
+      };
+      for (int v = 0; v < bg.num_vertices(); ++v)
+        if (bg.dim[v] == 1 && bg.entity[v] == c) size_at(v);
+      for (int pt : {g.curve_start_point(c), g.curve_end_point(c)})
+        if (pt > 0 && pt <= bg.num_vertices()) size_at(pt - 1);
+    }
+  };
+  apply(w.leading, w.leading_curve_composite, p.le_spacing, true);
+  apply(w.trailing, w.trailing_curve_composite, p.te_spacing, false);
+  return h;
+}
+
 // ln(beta) per triangle (its face's beta) and per edge (smallest over the faces it touches).
 void gradation_bounds(const BackgroundMesh& bg, const SizingParams& p, SizeMap& m) {
   m.tri_log_beta.resize(bg.num_triangles());
@@ -74,6 +99,7 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
   m.t_gap = clock.lap();
   m.h_user = user_sizes(g, bg, p);
   m.h_source = source_sizes(p.sources, bg.xyz, m.h_max, std::log(p.beta));
+  m.h_aero = aero_sizes(g, bg, p);
   m.t_user = clock.lap();
 
   const int nv = bg.num_vertices();
@@ -92,6 +118,9 @@ SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingP
                    std::make_pair(m.h_user[v], Limit::User), std::make_pair(m.h_source[v], Limit::Source)})
       if (c.first < best.first) best = c;
     if (best.first < m.h_min) best = {m.h_min, Limit::HMin};
+    // The chordwise spacing asked at a leading or trailing edge holds even
+    // under h_min: it is the user's word for that curve.
+    if (m.h_aero[v] < best.first) best = {m.h_aero[v], Limit::Aero};
     m.h_initial[v] = best.first;
     m.limit[v] = best.second;
   }

@@ -1,6 +1,7 @@
 // The initial size map (paper 3.2 and 3.4):
-//   h_a = max(h_min, min(h_d, h_c, h_u, h_s, h_max))
-// (h_s: the size sources, sizing/sources.h)
+//   h_a = min(h_aero, max(h_min, min(h_d, h_c, h_u, h_s, h_max)))
+// (h_s: the size sources, sizing/sources.h; h_aero: the chordwise spacing
+// asked at leading and trailing edges, which h_min does not floor)
 // with every term kept in the SizeMap, plus the ln(beta) bound of every
 // background edge (the smallest beta of the faces it touches) and triangle.
 //

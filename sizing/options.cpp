@@ -28,6 +28,10 @@ const std::vector<SizingOption>& sizing_options() {
        "are crossed by composite faces", 0.0, 180.0},
       {"refine_background", "--no-refine-background", nullptr, &P::refine_background, {},
        "keep the tessellation as the background mesh, even where its edges are too long for sizes to grow"},
+      {"le_spacing", "--le-spacing", &P::le_spacing, nullptr, {},
+       "size at leading edges as a share of the local chord (0.001: 0.1%), graded away at beta; 0: off", 0.0, 1.0},
+      {"te_spacing", "--te-spacing", &P::te_spacing, nullptr, {},
+       "size at sharp trailing edges as a share of the local chord, graded away at beta; 0: off", 0.0, 1.0},
       {"max_triangles", "--max-triangles", &P::max_triangles, nullptr, {},
        "refuse, before meshing, a size map that asks for more triangles (an estimate from the map)", 1.0, 1e15},
   };
@@ -52,6 +56,7 @@ std::string remedy(Limit l) {
     case Limit::HMin: return flag_of("h_min");
     case Limit::FarField: return "";
     case Limit::Source: return "the sources' sizes";
+    case Limit::Aero: return flag_of("le_spacing") + " or " + flag_of("te_spacing");
   }
   return flag_of("h_min");
 }

@@ -10,6 +10,7 @@
 
 #include "core/size_field.h"
 #include "sizing/sources.h"
+#include "topology/wing_features.h"
 
 namespace sizemesh {
 
@@ -46,6 +47,13 @@ struct SizingParams {
   double max_triangles = 2e7;     // work budget: a size map asking for more triangles is refused before meshing
   std::map<int, double> curve_phi_c_deg, face_phi_c_deg, face_mu_d, face_beta;
   std::map<int, UserSize> point_size, curve_size, face_size;
+  // Chordwise spacing at leading and trailing edges, as a share of the local
+  // chord (0: off); --aero sets both to 0.001, the workshops' medium grid.
+  double le_spacing = 0, te_spacing = 0;
+  static constexpr double kAeroSpacing = 0.001;
+  // The wing features of the model (topology/wing_features.h), found with
+  // the composite faces; the spacings above act on their curves.
+  WingFeatures wing;
   // Regions of space with their own size (sizing/sources.h): the config's
   // "sources" and the command line's --source, all of them.
   std::vector<SizeSource> sources;

@@ -12,9 +12,12 @@ constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
 // What set a vertex's initial size h_a (paper 3.4).
 // FarField: the own size of the far field and the symmetry plane (in place of h_max).
-// Source: a size source (sizing/sources.h).
-enum class Limit : int8_t { HMax = 0, Curvature, FaceProximity, CurveLength, Gap, Thickness, User, HMin, FarField, Source };
-constexpr int kNumLimits = 10;
+// Source: a size source (sizing/sources.h). Aero: a leading or trailing
+// edge's chordwise spacing (--le-spacing, --te-spacing).
+enum class Limit : int8_t {
+  HMax = 0, Curvature, FaceProximity, CurveLength, Gap, Thickness, User, HMin, FarField, Source, Aero
+};
+constexpr int kNumLimits = 11;
 const char* limit_name(Limit l);
 
 struct SizeMap {
@@ -23,7 +26,8 @@ struct SizeMap {
   std::vector<double> h_proximity;  // h_d = min(h_d1, h_d0, gap / mu_d)    (paper 3.2.2, plus gaps)
   std::vector<double> h_user;       // h_u prescribed sizes                 (paper 3.4)
   std::vector<double> h_source;     // h_s size sources (sizing/sources.h)
-  std::vector<double> h_initial;    // h_a = max(h_min, min(h_d, h_c, h_u, h_s, h_max))
+  std::vector<double> h_aero;       // spacing share times chord on leading and trailing edges (not floored by h_min)
+  std::vector<double> h_initial;    // h_a = min(h_aero, max(h_min, min(h_d, h_c, h_u, h_s, h_max)))
   std::vector<double> h;            // smoothed (after smooth()); starts as h_initial
   std::vector<Limit> limit;         // which term gave h_a
   std::vector<double> h_cap;        // the largest size allowed: h_max, or the least of its faces' own

@@ -51,7 +51,7 @@ def main():
     assert m.point_data["target_size"].min() > 0
     # Codes of sizing/size_map.h's Limit: the M6 is sized by curvature most of all.
     codes = m.point_data["limited_by"].astype(int)
-    assert codes.min() >= -1 and codes.max() <= 9
+    assert codes.min() >= -1 and codes.max() <= 10
     assert np.count_nonzero(codes == 1) > 0.3 * len(codes)
     reference = triangles_by_marker(m.points, tris, m.cell_data["source_face_id"][0])
 

@@ -1,0 +1,51 @@
+// Wing features found on the united surface: leading and trailing edges, and
+// the local chord between them, for the chordwise spacings a CFD engineer
+// asks at those curves (sizing: --le-spacing, --te-spacing, --aero).
+//
+// A trailing edge is a feature curve across which the surface turns by at
+// least kTrailingTurnDeg (the two skins meet at a wedge of at most 60
+// degrees). A leading edge is a smooth (crossed) curve on a composite face
+// that also holds a trailing edge, running across the direction to that
+// trailing edge (not along it), where the surface is curved far more than
+// the chord: radius of curvature under a tenth of the distance to the
+// trailing edge. The chord at a point of one is its distance to the nearest
+// point of the other kind on the same composite face.
+//
+// Found on B-rep curves only: a leading edge inside a face (a skin wrapped
+// round its nose without a curve there) and a blunt trailing edge's base
+// inside a face (behind C0 creases of the spline, as OpenVSP writes thick
+// trailing edges) are not found.
+//
+// Inputs:  g the B-rep, t its topology (curve kinds, turns, composites).
+// Output:  WingFeatures (below). Work: a few surface evaluations per curve.
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.h"
+#include "topology/topology.h"
+
+namespace sizemesh {
+
+struct WingFeatures {
+  static constexpr double kTrailingTurnDeg = 120;
+
+  std::vector<int> leading, trailing;  // curve ids
+  std::vector<int> leading_curve_composite, trailing_curve_composite;  // the composite face of each (a side's)
+  // Points sampled along each kind's curves (chords are measured to them),
+  // with the group of faces joined across smooth curves each lies on (the
+  // composite face, whether or not the mesher joins them).
+  std::vector<Vec3> leading_points, trailing_points;
+  std::vector<int> leading_composite, trailing_composite;
+  double leading_length = 0, trailing_length = 0;
+  double chord_min = 0, chord_max = 0;  // over the samples of both kinds
+
+  bool empty() const { return leading.empty() && trailing.empty(); }
+  // Distance from x on composite `composite` to the nearest sample of the
+  // other kind there (a leading edge's chord when `leading`); 0 where none.
+  double chord_at(const Vec3& x, int composite, bool leading) const;
+};
+
+WingFeatures find_wing_features(const Geometry& g, const Topology& t);
+
+}  // namespace sizemesh
