@@ -159,7 +159,8 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
   }
 }
 
-std::vector<std::string> arguments_for(const CLI::App& app, const std::map<std::string, std::string>& kwargs) {
+std::vector<std::string> arguments_for(const CLI::App& app,
+                                       const std::vector<std::pair<std::string, std::string>>& kwargs) {
   std::vector<std::string> args;
   for (const auto& [name, value] : kwargs) {
     std::string flag = "--" + name;

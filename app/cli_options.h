@@ -33,9 +33,11 @@ void add_run_options(CLI::App& app, RunCommandLine& cl);
 // options the command line gave (they win over the config file).
 void finish_run_options(const CLI::App& app, RunCommandLine& cl);
 
-// The command-line arguments for keyword arguments (name -> value as text, or
-// "true"/"false" for switches): `h_min` -> `--h-min`, `sew=false` ->
-// `--no-sew`. Throws Error on a name the command line does not have.
-std::vector<std::string> arguments_for(const CLI::App& app, const std::map<std::string, std::string>& kwargs);
+// The command-line arguments for keyword arguments (name and value as text,
+// or "true"/"false" for switches; a name may come more than once, for a
+// repeatable flag): `h_min` -> `--h-min`, `sew=false` -> `--no-sew`. Throws
+// Error on a name the command line does not have.
+std::vector<std::string> arguments_for(const CLI::App& app,
+                                       const std::vector<std::pair<std::string, std::string>>& kwargs);
 
 }  // namespace sizemesh

@@ -35,14 +35,20 @@ std::string as_text(const py::handle& v) {
 
 // Options of one run from a path and keyword arguments, through the command line's parser.
 RunOptions options_for(const py::object& path, const py::kwargs& kwargs) {
-  std::map<std::string, std::string> given;
+  std::vector<std::pair<std::string, std::string>> given;
+  bool quiet_given = false;
   for (const auto& [k, v] : kwargs) {
     const std::string name = k.cast<std::string>();
     for (const char* file_option : {"output", "report", "background", "info", "version", "help"})
       if (name == file_option) throw Error("'" + name + "' is not an option here: use sizemesh.write() for files");
-    given[name] = as_text(v);
+    quiet_given = quiet_given || name == "quiet";
+    // A list gives the flag once per item (source=['box ...', 'sphere ...']).
+    if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v))
+      for (const py::handle& item : v) given.emplace_back(name, as_text(item));
+    else
+      given.emplace_back(name, as_text(v));
   }
-  if (!given.count("quiet")) given["quiet"] = "true";
+  if (!quiet_given) given.emplace_back("quiet", "true");
   CLI::App app{"sizemesh"};
   RunCommandLine cl;
   add_run_options(app, cl);

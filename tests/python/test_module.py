@@ -135,6 +135,17 @@ def test_a_mesh_family_grows_by_its_ratio_around_the_default_mesh():
         sizemesh.mesh_family(M6, levels=9)
 
 
+def test_repeatable_options_take_a_list_and_sources_label_their_nodes():
+    box = "box 700 1000 -50 1200 1250 50 6"
+    one = sizemesh.mesh(M6, source=box)
+    two = sizemesh.mesh(M6, source=[box, "sphere 300 300 0 40 4"])
+    assert np.count_nonzero(one.limited_by == 9) > 0
+    assert np.count_nonzero(two.limited_by == 9) > np.count_nonzero(one.limited_by == 9)
+    assert len(two.triangles) > len(one.triangles)
+    with pytest.raises(sizemesh.Error, match="--source"):
+        sizemesh.mesh(M6, source="box 1 2 3")
+
+
 def test_size_map_queries_at_its_vertices_give_their_sizes():
     s = sizemesh.size_map(M6)
     assert s.sizes.shape == (len(s.points),)
