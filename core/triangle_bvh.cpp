@@ -1,7 +1,10 @@
 #include "core/triangle_bvh.h"
 
+#include <oneapi/tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace sizemesh {
 
@@ -15,18 +18,33 @@ TriangleBVH::TriangleBVH(const std::vector<Vec3>& xyz, const std::vector<std::ar
     order_[t] = t;
     centroid_[t] = (xyz[tris[t][0]] + xyz[tris[t][1]] + xyz[tris[t][2]]) / 3.0;
   }
-  nodes_.reserve(2 * n + 1);
-  if (n > 0) build(0, n);
+  if (n > 0) {
+    nodes_.resize(subtree_nodes(n));
+    build(0, 0, n);
+  }
   std::vector<Vec3>().swap(centroid_);  // only the build needs them
   boxes_.resize(n);
   for (int t = 0; t < n; ++t)
     for (const Vec3& p : corners_[t]) boxes_[t].extend(p);
 }
 
+namespace {
+
+// (f(m), f(m + 1)) for f = TriangleBVH::subtree_nodes, in O(log m): the
+// halves of m and m + 1 are j and j + 1 for j = m / 2.
+std::pair<int, int> subtree_pair(int m) {
+  if (m <= 3) return {1, 1};
+  if (m == 4) return {1, 3};
+  const auto [fj, fj1] = subtree_pair(m / 2);
+  return m % 2 == 0 ? std::make_pair(1 + 2 * fj, 1 + fj + fj1) : std::make_pair(1 + fj + fj1, 1 + 2 * fj1);
+}
+
+}  // namespace
+
+int TriangleBVH::subtree_nodes(int m) { return subtree_pair(m).first; }
+
 // Median split along the longest axis of the centroids' box.
-int TriangleBVH::build(int begin, int end) {
-  const int id = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
+void TriangleBVH::build(int id, int begin, int end) {
   Eigen::AlignedBox3d box, cbox;
   for (int i = begin; i < end; ++i) {
     for (const Vec3& p : corners_[order_[i]]) box.extend(p);
@@ -36,18 +54,22 @@ int TriangleBVH::build(int begin, int end) {
   if (end - begin <= 4) {
     nodes_[id].begin = begin;
     nodes_[id].end = end;
-    return id;
+    return;
   }
   int axis;
   cbox.sizes().maxCoeff(&axis);
   const int mid = (begin + end) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](int a, int b) { return centroid_[a][axis] < centroid_[b][axis]; });
-  const int l = build(begin, mid);
-  const int r = build(mid, end);
+  const int l = id + 1, r = id + 1 + subtree_nodes(mid - begin);
   nodes_[id].left = l;
   nodes_[id].right = r;
-  return id;
+  if (end - begin >= kParallelBuild) {
+    tbb::parallel_invoke([&] { build(l, begin, mid); }, [&] { build(r, mid, end); });
+  } else {
+    build(l, begin, mid);
+    build(r, mid, end);
+  }
 }
 
 namespace {

@@ -77,7 +77,13 @@ class TriangleBVH {
     int left = -1, right = -1;  // children; -1 for a leaf
     int begin = 0, end = 0;     // leaf range in order_
   };
-  int build(int begin, int end);
+  // The subtree over order_[begin, end) into nodes_[id ...] (pre-order:
+  // its left child at id + 1, its right child after the left subtree's
+  // nodes), large subtrees on two tasks: the same tree for any thread count.
+  void build(int id, int begin, int end);
+  // Nodes of the subtree over m triangles: 1 for m <= 4, else 1 + f(m / 2) + f(m - m / 2).
+  static int subtree_nodes(int m);
+  static constexpr int kParallelBuild = 20000;  // triangles under a node whose halves are built as two tasks
 
   std::vector<std::array<Vec3, 3>> corners_;
   std::vector<int> order_;

@@ -37,42 +37,42 @@ std::unordered_set<uint64_t> kept_edges(const SurfaceMesh& s, const Geometry& g,
         for (size_t j = i + 1; j < fs.size(); ++j)
           if (fs[i] != fs[j]) between[{std::min(fs[i], fs[j]), std::max(fs[i], fs[j])}].push_back(c);
   }
-  std::unordered_map<uint64_t, std::array<int, 3>> edges;  // key -> uses, first and second triangle
+  // Each edge once: from its first triangle where two share it; an edge of
+  // one triangle or of more than two is kept.
+  const std::vector<std::array<int, 3>> nbr = triangle_neighbours(s.tris);
+  std::unordered_set<uint64_t> hard;
   for (size_t t = 0; t < s.tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
-      auto& e = edges.try_emplace(edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3]), std::array<int, 3>{0, -1, -1}).first->second;
-      if (e[0] < 2) e[1 + e[0]] = static_cast<int>(t);
-      ++e[0];
+      const uint64_t key = edge_key(s.tris[t][k], s.tris[t][(k + 1) % 3]);
+      const int other = nbr[t][k];
+      if (other < 0) {
+        hard.insert(key);
+        continue;
+      }
+      if (other < static_cast<int>(t)) continue;
+      const int f1 = s.tri_face[t], f2 = s.tri_face[other];
+      if (f1 == f2) continue;
+      if (topo.composite_of(f1) != topo.composite_of(f2)) {
+        hard.insert(key);
+        continue;
+      }
+      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+      const auto it = between.find({std::min(f1, f2), std::max(f1, f2)});
+      int curve = 0;
+      if (it != between.end()) {
+        const auto& cs = it->second;
+        for (int n : {a, b})
+          if (!curve && s.node_dim[n] == 1 && std::count(cs.begin(), cs.end(), s.node_entity[n])) curve = s.node_entity[n];
+        if (!curve && cs.size() == 1) curve = cs[0];
+        for (int c : cs)
+          if (!curve && s.node_dim[a] == 0 && s.node_dim[b] == 0) {
+            const int p = g.curve_start_point(c), q = g.curve_end_point(c);
+            if ((p == s.node_entity[a] && q == s.node_entity[b]) || (p == s.node_entity[b] && q == s.node_entity[a]))
+              curve = c;
+          }
+      }
+      if (!curve || topo.hard(curve)) hard.insert(key);
     }
-  std::unordered_set<uint64_t> hard;
-  for (const auto& [key, e] : edges) {
-    if (e[0] != 2) {
-      hard.insert(key);
-      continue;
-    }
-    const int f1 = s.tri_face[e[1]], f2 = s.tri_face[e[2]];
-    if (f1 == f2) continue;
-    if (topo.composite_of(f1) != topo.composite_of(f2)) {
-      hard.insert(key);
-      continue;
-    }
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    const auto it = between.find({std::min(f1, f2), std::max(f1, f2)});
-    int curve = 0;
-    if (it != between.end()) {
-      const auto& cs = it->second;
-      for (int n : {a, b})
-        if (!curve && s.node_dim[n] == 1 && std::count(cs.begin(), cs.end(), s.node_entity[n])) curve = s.node_entity[n];
-      if (!curve && cs.size() == 1) curve = cs[0];
-      for (int c : cs)
-        if (!curve && s.node_dim[a] == 0 && s.node_dim[b] == 0) {
-          const int p = g.curve_start_point(c), q = g.curve_end_point(c);
-          if ((p == s.node_entity[a] && q == s.node_entity[b]) || (p == s.node_entity[b] && q == s.node_entity[a]))
-            curve = c;
-        }
-    }
-    if (!curve || topo.hard(curve)) hard.insert(key);
-  }
   return hard;
 }
 
