@@ -118,7 +118,7 @@ int run(const RunOptions& o) {
   if (o.family > 0 && o.output.empty()) throw Error("a mesh family (--family) needs an output file (-o)");
   std::unique_ptr<RunResult> r = size_model(o, warn);
   if (o.output.empty()) warn_not_united(r->model->info().preparation, warn);
-  if (!o.background.empty()) write_background_sizes(o.background, r->bg, r->sizes);
+  if (!o.background.empty()) write_background_sizes(o.background, r->bg, r->sizes, &r->params.wing);
   if (!o.output.empty() && o.family > 0) {
     meshing = true;
     const int code = run_family(*r, o, warn);

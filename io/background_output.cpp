@@ -19,7 +19,8 @@ void write_background(const std::string& path, const BackgroundMesh& bg, const s
   write_vtu(path, bg.xyz, bg.tris, point, cell);
 }
 
-void write_background_sizes(const std::string& path, const BackgroundMesh& bg, const SizeMap& m) {
+void write_background_sizes(const std::string& path, const BackgroundMesh& bg, const SizeMap& m,
+                            const WingFeatures* wing) {
   auto shown = [&](const std::vector<double>& h) {
     std::vector<double> out(h.size());
     std::transform(h.begin(), h.end(), out.begin(), [&](double x) { return std::min(x, m.h_max); });
@@ -27,16 +28,21 @@ void write_background_sizes(const std::string& path, const BackgroundMesh& bg, c
   };
   std::vector<double> limit;
   for (Limit l : m.limit) limit.push_back(static_cast<int>(l));
-  write_background(path, bg,
-                   {{"h_curvature", shown(m.h_curvature)},
-                    {"h_proximity", shown(m.h_proximity)},
-                    {"h_user", shown(m.h_user)},
-                    {"h_source", shown(m.h_source)},
-                    {"h_aero", shown(m.h_aero)},
-                    {"h_initial", m.h_initial},
-                    {"h_smoothed", m.h},
-                    {"limited_by", limit}},
-                   {{"gradient_ratio", check_gradation(bg, m).triangle_ratio}});
+  std::vector<Field> fields = {{"h_curvature", shown(m.h_curvature)}, {"h_proximity", shown(m.h_proximity)},
+                               {"h_user", shown(m.h_user)},           {"h_source", shown(m.h_source)},
+                               {"h_aero", shown(m.h_aero)},           {"h_initial", m.h_initial},
+                               {"h_smoothed", m.h},                   {"limited_by", limit}};
+  if (wing) {
+    std::vector<double> code(bg.num_vertices(), 0.0);
+    for (int v = 0; v < bg.num_vertices(); ++v) {
+      if (bg.dim[v] != 1) continue;
+      const int c = bg.entity[v];
+      if (std::count(wing->leading.begin(), wing->leading.end(), c)) code[v] = 1;
+      if (std::count(wing->trailing.begin(), wing->trailing.end(), c)) code[v] = 2;
+    }
+    fields.push_back({"wing_feature", code});
+  }
+  write_background(path, bg, fields, {{"gradient_ratio", check_gradation(bg, m).triangle_ratio}});
 }
 
 }  // namespace sizemesh

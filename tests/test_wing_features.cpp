@@ -107,8 +107,12 @@ TEST_CASE("the flag --aero sets the workshop spacings where not given; the repor
   CHECK(cl.options.sizing.le_spacing == SizingParams::kAeroSpacing);
   CHECK(cl.options.sizing.te_spacing == 0.002);
   const test::TempDir dir("aero");
-  const auto r = test::run_sizemesh(test::model_path("onera_m6_wing.stp") + " -q --aero --report " + (dir / "r.json"));
+  const auto r = test::run_sizemesh(test::model_path("onera_m6_wing.stp") + " -q --aero --report " + (dir / "r.json") +
+                                    " --background " + (dir / "bg.vtu"));
   REQUIRE(r.status == 0);
+  const std::string bg = test::slurp(dir / "bg.vtu");
+  CHECK(bg.find("Name=\"wing_feature\"") != std::string::npos);
+  CHECK(bg.find("Name=\"h_aero\"") != std::string::npos);
   const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
   CHECK(j.at("wing").at("trailing_edges") == nlohmann::json::array({kTrailingEdge}));
   CHECK(j.at("wing").at("leading_length").get<double>() > 1381);
