@@ -87,8 +87,11 @@ pid_t start(const Job& j, const fs::path& out, const std::string& format, const 
   // An earlier batch's files for this one must not pass for its results
   // (a run killed before writing its report would read the old one).
   std::error_code ec;
-  for (const std::string& ext : {"." + format, std::string(".json"), std::string(".log")})
+  for (const std::string& ext : {"." + format, std::string(".json"), std::string(".log")}) {
     fs::remove(out / (j.stem + ext), ec);
+    for (int level = 1; level <= 8; ++level)  // a mesh family's levels (--family)
+      fs::remove(out / (j.stem + ".L" + std::to_string(level) + ext), ec);
+  }
   std::vector<std::string> args = {"/proc/self/exe", j.input, "-q", "-o", (out / (j.stem + "." + format)).string(),
                                    "--report", (out / (j.stem + ".json")).string()};
   args.insert(args.end(), extra.begin(), extra.end());
@@ -129,17 +132,33 @@ void finish(Job& j, int wstatus, const rusage& usage, bool timed_out, const fs::
     j.status = j.exit_code == 0 ? "ok" : j.exit_code == 3 ? "partial" : "error";
     j.message = last_line;
   }
-  std::ifstream report(out / (j.stem + ".json"));
-  if (!report || j.status == "error") return;
-  try {
-    const auto r = nlohmann::json::parse(report);
-    const auto& m = r.at("mesh");
-    j.triangles = m.at("triangles"), j.nodes = m.at("nodes");
-    j.bad = m.at("bad_below_12deg"), j.avoidable = m.at("avoidable_below_12deg");
-    for (const auto& f : m.at("failed_faces"))
-      j.failed_faces += (j.failed_faces.empty() ? "" : " ") + std::to_string(f.at("face").get<int>());
-  } catch (const std::exception&) {  // a report cut short: the row keeps what the exit said
+  if (j.status == "error") return;
+  // One report, or a mesh family's (--family): the row has the finest
+  // level's counts and the message each level's triangles.
+  std::vector<fs::path> reports = {out / (j.stem + ".json")};
+  if (!fs::exists(reports[0], ec)) {
+    reports.clear();
+    for (int level = 1; level <= 8 && fs::exists(out / (j.stem + ".L" + std::to_string(level) + ".json"), ec); ++level)
+      reports.push_back(out / (j.stem + ".L" + std::to_string(level) + ".json"));
   }
+  std::string levels;
+  for (size_t i = 0; i < reports.size(); ++i) {
+    std::ifstream report(reports[i]);
+    try {
+      const auto r = nlohmann::json::parse(report);
+      const auto& m = r.at("mesh");
+      j.triangles = m.at("triangles"), j.nodes = m.at("nodes");
+      j.bad = m.at("bad_below_12deg"), j.avoidable = m.at("avoidable_below_12deg");
+      j.failed_faces.clear();
+      for (const auto& f : m.at("failed_faces"))
+        j.failed_faces += (j.failed_faces.empty() ? "" : " ") + std::to_string(f.at("face").get<int>());
+      if (reports.size() > 1)
+        levels += (levels.empty() ? "family:" : ";") + std::string(" L") + std::to_string(i + 1) + " " +
+                  std::to_string(j.triangles) + " triangles";
+    } catch (const std::exception&) {  // a report cut short: the row keeps what the exit said
+    }
+  }
+  if (!levels.empty()) j.message = j.message.empty() ? levels : j.message + "; " + levels;
 }
 
 std::string csv(const std::string& s) {

@@ -118,3 +118,21 @@ TEST_CASE("batch options: formats, options for every file, bad inputs", "[batch]
   CHECK(bad.status == 2);
   CHECK(bad.err_lines() == 1);
 }
+
+TEST_CASE("a batch of mesh families: every level written, the row with the finest level and each level's count", "[batch]") {
+  sizemesh::test::TempDir dir("batch_family");
+  const std::string m6 = sizemesh::test::model_path("onera_m6_wing.stp");
+  const auto r = run_sizemesh("batch " + m6 + " -o " + (dir / "out") + " -q -- --family 2", 120);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(!fs::exists(dir / "out/onera_m6_wing.vtu"));
+  const auto coarse = nlohmann::json::parse(sizemesh::test::slurp(dir / "out/onera_m6_wing.L1.json"));
+  const auto fine = nlohmann::json::parse(sizemesh::test::slurp(dir / "out/onera_m6_wing.L2.json"));
+  CHECK(fs::exists(dir / "out/onera_m6_wing.L2.vtu"));
+  const auto rows = read_summary(dir / "out/summary.csv");
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0].at("status") == "ok");
+  CHECK(rows[0].at("triangles") == std::to_string(fine["mesh"]["triangles"].get<long long>()));
+  CHECK(rows[0].at("message") == "family: L1 " + std::to_string(coarse["mesh"]["triangles"].get<long long>()) +
+                                     " triangles; L2 " + rows[0].at("triangles") + " triangles");
+}
