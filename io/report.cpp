@@ -154,6 +154,7 @@ nlohmann::json report_json(const RunReport& r) {
     j["mesher"] = {{"estimated_triangles", r.estimated_triangles},
                    {"front_steps", st.front_steps},
                    {"front_steps_per_triangle", st.front_steps / n},
+                   {"front_work_per_step", st.front_work / std::max(1.0, double(st.front_steps))},
                    {"faces_retried", st.faces_retried},
                    {"faces_relaxed", st.faces_relaxed},
                    {"faces_lenient", st.faces_lenient},

@@ -5,6 +5,7 @@
 #include "mesher/advancing_front.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "mesher/front.h"
@@ -62,7 +63,22 @@ FrontResult Front::run() {
   }
   lo_ = lo;
   hi_ = hi;
-  grid_.init(lo, hi, n_edges);
+  // The box's length in space along u against v, from the surface's mean
+  // speeds at 5 x 5 points inside it (the boundary alone misleads: a
+  // sphere's pole edges have no length in space).
+  double speed_u = 0, speed_v = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const Vec2 uv(lo.x() + (hi.x() - lo.x()) * (i + 0.5) / 5, lo.y() + (hi.y() - lo.y()) * (j + 0.5) / 5);
+      try {
+        const SurfaceSample q = fs_.eval_shape(uv);
+        if (q.du.allFinite() && q.dv.allFinite()) speed_u += q.du.norm(), speed_v += q.dv.norm();
+      } catch (const EvaluationError&) {  // outside what the surface evaluates: not counted
+      }
+    }
+  aspect_ = speed_u > 0 && speed_v > 0 && hi.y() > lo.y() ? (hi.x() - lo.x()) * speed_u / ((hi.y() - lo.y()) * speed_v)
+                                                          : 1.0;
+  grid_.init(lo, hi, n_edges, aspect_);
   grid_edges_ = std::max<size_t>(n_edges, 64);
   // Triangles on each edge in space (by node identity, across seams): a
   // boundary edge has one on the other face, a seam edge none yet.
@@ -109,12 +125,14 @@ FrontResult Front::run() {
   if (!r.ok) r.reason = "front left open";
   r.fronts_3d = fronts_3d_;
   r.steps = steps_;
+  r.work = work_;
   return r;
 }
 
 FrontResult& Front::fail(FrontResult& r) const {
   r.fronts_3d = fronts_3d_;
   r.steps = steps_;
+  r.work = work_;
   for (const FrontEdge& e : edges_)
     if (e.alive) r.open_edges.push_back({e.a, e.b});
   return r;

@@ -36,6 +36,7 @@ struct FrontResult {
   int fronts_3d = 0;  // ideal points computed in space (Tremel procedure 1)
   std::vector<std::array<int, 2>> open_edges;  // front left when it failed
   long long steps = 0;                          // tries at front edges
+  long long work = 0;                           // front edges and nodes looked at (its work budget's measure)
 };
 
 // Strategies 0 .. kStrategyCount-1, from the best shapes to the most robust.

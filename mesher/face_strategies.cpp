@@ -153,6 +153,7 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
       r.mesh = *a.boundary;
       fr = advancing_front(r.mesh, fs, strategy, budget, a.lenient);
       r.front_steps += fr.steps;
+      r.front_work += fr.work;
       r.fronts_3d += fr.fronts_3d;
       r.strategy = strategy;
       // A few edges the front could not advance from: close them in place.

@@ -21,6 +21,7 @@ struct FaceResult {
   int fronts_3d = 0;
   int strategy = 0;  // front strategy that closed the face
   long long front_steps = 0;
+  long long front_work = 0;  // front edges and nodes looked at, over its strategies
   bool filled = false;  // the front's leftover was closed by ear clipping
   bool lenient = false; // the strict run left a hole: meshed by the lenient one
   double seconds_front = 0, seconds_optimise = 0;

@@ -25,7 +25,7 @@ void Front::add_edge(int a, int b) {
 
 void Front::rebuild_grid() {
   grid_edges_ = edges_.size();
-  grid_.init(lo_, hi_, static_cast<int>(edges_.size()));
+  grid_.init(lo_, hi_, static_cast<int>(edges_.size()), aspect_);
   for (int id = 0; id < static_cast<int>(edges_.size()); ++id)
     if (edges_[id].alive) grid_.insert(id, fm_.uv[edges_[id].a], fm_.uv[edges_[id].b]);
 }

@@ -165,6 +165,7 @@ class Front {
   EdgeGrid grid_;
   size_t grid_edges_ = 0;  // edges when the grid was last built
   Vec2 lo_, hi_;
+  double aspect_ = 1.0;   // the uv box's length in space along u over that along v (edge_grid.h)
   Vec2 box_lo_, box_hi_;  // the box gather() last covered
   int alive_ = 0;
   int fronts_3d_ = 0;

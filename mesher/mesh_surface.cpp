@@ -55,6 +55,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeField& h, const MeshOptio
     out.stats.size_queries += r.size_queries;
     out.stats.fronts_3d += r.fronts_3d;
     out.stats.front_steps += r.front_steps;
+    out.stats.front_work += r.front_work;
     out.stats.faces_retried += r.strategy > 0;
     out.stats.faces_relaxed += r.strategy >= 2;
     out.stats.faces_lenient += r.lenient;

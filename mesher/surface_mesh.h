@@ -32,6 +32,7 @@ struct MeshStats {
   long long evaluations_setup = 0, evaluations_front = 0, evaluations_optimise = 0;
   int fronts_3d = 0;            // ideal points computed in 3D and projected (Tremel 1)
   long long front_steps = 0;    // tries at front edges, over every face and strategy
+  long long front_work = 0;     // front edges and nodes those tries looked at
   int faces_retried = 0;        // faces whose front got stuck and were meshed again
   int faces_relaxed = 0;        // of those, faces that needed the last-resort strategies
   int faces_lenient = 0;        // of those, faces only a lenient run closed (may hold inverted triangles)
