@@ -120,7 +120,7 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
       ->group(sizing);
   app.add_flag("--aero", cl.aero,
                "the gridding workshops' defaults: --le-spacing and --te-spacing 0.001 (0.1% of the local chord) "
-               "where not given, beta 1.2")
+               "where not given (with the default beta, 1.2, the workshops' growth bound)")
       ->group(sizing);
   app.add_option("--config", cl.options.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
