@@ -12,6 +12,15 @@ namespace {
 constexpr double kCosMin = 0.5;    // triangle normal against the surface normal
 constexpr double kCosAgree = 0.90630778703665;  // cos 25 deg: corner normals that agree
 
+// Triangle tr's corners in uv and their samples, with node i moved to (uv, s).
+void moved_corners(const FaceMesh& fm, const std::array<int, 3>& tr, int i, const Vec2& uv, const SurfaceSample& s,
+                   Vec2 (&u)[3], const SurfaceSample* (&p)[3]) {
+  for (int k = 0; k < 3; ++k) {
+    u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
+    p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
+  }
+}
+
 }  // namespace
 
 double shape(const Vec2& ua, const Vec2& ub, const Vec2& uc, const SurfaceSample& sa, const SurfaceSample& sb,
@@ -67,10 +76,7 @@ BallMeasure measure_ball(const FaceMesh& fm, const FaceSurface& fs, const Balls&
     const auto& tr = fm.tris[b.tri_of[e]];
     Vec2 u[3];
     const SurfaceSample* p[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
-      p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
-    }
+    moved_corners(fm, tr, i, uv, s, u, p);
     if (fm.pole_triangle(tr)) {
       m.valid = orient(u[0], u[1], u[2]) > 0;
       continue;
@@ -96,10 +102,7 @@ bool ball_keeps_shape(const FaceMesh& fm, const FaceSurface& fs, const Balls& b,
     const auto& tr = fm.tris[b.tri_of[e]];
     Vec2 u[3];
     const SurfaceSample* p[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = tr[k] == i ? uv : fm.uv[tr[k]];
-      p[k] = tr[k] == i ? &s : &fm.s[tr[k]];
-    }
+    moved_corners(fm, tr, i, uv, s, u, p);
     if (fm.pole_triangle(tr)) {
       if (!(orient(u[0], u[1], u[2]) > 0)) return false;
       continue;
