@@ -123,14 +123,15 @@ void estimate(RunResult& r, const RunOptions& o, const WarningSink&) {
             << " edges flipped)\n";
   print_sizing_summary(r.bg, r.sizes, report.smoothing, std::cout);
   const WingFeatures& w = r.params.wing;
-  if (!w.empty())
+  if (!w.empty()) {
     std::cout << "wing features: " << w.leading.size() << " leading edge curves (" << w.leading_length << " long), "
               << w.trailing.size() << " trailing edge curves (" << w.trailing_length << "), chord " << w.chord_min
               << " to " << w.chord_max << "; chordwise spacing ";
-  if (!w.empty() && (r.params.le_spacing > 0 || r.params.te_spacing > 0))
-    std::cout << r.params.le_spacing << " and " << r.params.te_spacing << " of the local chord\n";
-  else if (!w.empty())
-    std::cout << "off (--le-spacing, --te-spacing, --aero)\n";
+    if (r.params.le_spacing > 0 || r.params.te_spacing > 0)
+      std::cout << r.params.le_spacing << " and " << r.params.te_spacing << " of the local chord\n";
+    else
+      std::cout << "off (--le-spacing, --te-spacing, --aero)\n";
+  }
   std::cout << "estimate: about " << static_cast<long long>(r.estimate.total + 0.5) << " triangles\n";
 }
 
