@@ -84,55 +84,41 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
   }
   // Leading edges: smooth curves across the way to a trailing edge of their
   // composite, curved far more than the chord.
-  std::vector<char> te_used(g.num_curves() + 1, 0);
   for (const auto& [c, u] : uses) {
     const CurveKind k = kind(c);
     if ((k != CurveKind::Virtual && k != CurveKind::Seam) || u.empty() || g.curve_degenerated(c)) continue;
     const int comp = root(u[0].face);
-    double t0, t1;
-    g.curve_range(c, t0, t1);
-    bool leading = true;
-    std::vector<int> partners;
-    for (double s : {0.25, 0.5, 0.75}) {
-      const double at = t0 + (t1 - t0) * s;
+    // At a quarter, half and three quarters of its length.
+    auto leading_at = [&](double share) {
+      double t0, t1;
+      g.curve_range(c, t0, t1);
+      const double at = t0 + (t1 - t0) * share;
       const Vec3 x = g.eval_curve(c, at);
       const int i = nearest(te_points, te_comp, comp, x);
-      if (i < 0) {
-        leading = false;
-        break;
-      }
+      if (i < 0) return false;
       const Vec3 to = te_points[i] - x;
       const double chord = to.norm();
-      Vec3 tangent = g.curve_tangent(c, at);
-      if (!(chord > 0) || !(tangent.norm() > 0)) {
-        leading = false;
-        break;
-      }
-      tangent.normalize();
-      if (std::abs(tangent.dot(to / chord)) > kAcross) {
-        leading = false;
-        break;
-      }
+      const Vec3 tangent = g.curve_tangent(c, at);
+      if (!(chord > 0) || !(tangent.norm() > 0) || std::abs(tangent.normalized().dot(to / chord)) > kAcross)
+        return false;
       for (const Use& side : u) {
         double curvature = 0;
         if (!g.max_curvature(side.face, g.eval_pcurve(c, side.face, side.side, at), curvature) ||
             !(curvature * kRadiusOverChord * chord >= 1))
-          leading = false;
+          return false;
       }
-      if (!leading) break;
-      partners.push_back(te_curve[i]);
-    }
-    if (!leading) continue;
+      return true;
+    };
+    if (!leading_at(0.25) || !leading_at(0.5) || !leading_at(0.75)) continue;
     w.leading.push_back(c);
     w.leading_curve_composite.push_back(comp);
     w.leading_length += g.curve_length(c);
     for (const Vec3& x : samples(g, c)) w.leading_points.push_back(x), w.leading_composite.push_back(comp);
-    for (int p : partners) te_used[p] = 1;
   }
-  // The trailing edges a leading edge found (a sharp wedge elsewhere, with no
-  // leading edge before it, is no wing's).
+  // The trailing edges on a leading edge's faces (a sharp wedge elsewhere,
+  // with no leading edge before it, is no wing's).
   for (int c : sharp) {
-    bool with_leading = te_used[c];
+    bool with_leading = false;
     for (const Use& side : uses[c])
       with_leading = with_leading || std::find(w.leading_composite.begin(), w.leading_composite.end(),
                                                root(side.face)) != w.leading_composite.end();
@@ -146,13 +132,13 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
       w.trailing_points.push_back(te_points[i]), w.trailing_composite.push_back(te_comp[i]);
   // Chord range over both kinds' samples.
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
-  for (size_t i = 0; i < w.leading_points.size(); ++i) {
-    const double c = w.chord_at(w.leading_points[i], w.leading_composite[i], true);
-    if (c > 0) lo = std::min(lo, c), hi = std::max(hi, c);
-  }
-  for (size_t i = 0; i < w.trailing_points.size(); ++i) {
-    const double c = w.chord_at(w.trailing_points[i], w.trailing_composite[i], false);
-    if (c > 0) lo = std::min(lo, c), hi = std::max(hi, c);
+  for (const bool leading : {true, false}) {
+    const std::vector<Vec3>& points = leading ? w.leading_points : w.trailing_points;
+    const std::vector<int>& comp = leading ? w.leading_composite : w.trailing_composite;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const double c = w.chord_at(points[i], comp[i], leading);
+      if (c > 0) lo = std::min(lo, c), hi = std::max(hi, c);
+    }
   }
   if (hi > 0) w.chord_min = lo, w.chord_max = hi;
   return w;
