@@ -87,8 +87,8 @@ class FoldSplitter : public ShapeUpgrade_SplitSurface {
       return cand;
     };
     const std::vector<std::pair<double, double>> cand_u = candidates(true), cand_v = candidates(false);
-    for (double t : kept_splits(*b, true, cand_u, u0, u1, v0, v1, kStripBands * band_)) insert(myUSplitValues, t);
-    for (double t : kept_splits(*b, false, cand_v, v0, v1, u0, u1, kStripBands * band_)) insert(myVSplitValues, t);
+    for (double t : kept_splits(*b, true, cand_u, u0, u1, v0, v1, kStripBands * band_, band_)) insert(myUSplitValues, t);
+    for (double t : kept_splits(*b, false, cand_v, v0, v1, u0, u1, kStripBands * band_, band_)) insert(myVSplitValues, t);
     if (myUSplitValues->Length() > 2 || myVSplitValues->Length() > 2)
       myStatus |= ShapeExtend::EncodeStatus(ShapeExtend_DONE1);
   }
@@ -194,7 +194,12 @@ TopoDS_Shape divide(const TopoDS_Shape& shape, double band, Lines lines, const s
       bool valid = true;
       for (Change& c : changes) {
         const TopoDS_Face& f = c.face;
-        if (!std::all_of(c.pieces.begin(), c.pieces.end(), good)) {
+        // Divided both ways at once, a face whose caps and trailing-edge
+        // base meet at a corner where the surface collapses (OpenVSP's blunt
+        // trailing edge at its root cap) leaves a piece of no area there: a
+        // valid face the mesher cannot fill. It goes the way of an invalid one.
+        const bool no_area = !loose && c.pieces.size() > 1 && empty_piece(f, c.pieces);
+        if (no_area || !std::all_of(c.pieces.begin(), c.pieces.end(), good)) {
           const Geom_Surface* surface = BRep_Tool::Surface(f).get();
           if (loose) {
             // The lines that bound a bad piece are not tried again; the

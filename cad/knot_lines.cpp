@@ -32,17 +32,76 @@ bool normal_at(const Geom_Surface& s, double u, double v, gp_Dir& n) {
   return true;
 }
 
+// Length over the surface across the strip between the iso-lines t_a and
+// t_b at w of the other parameter (a polyline of `steps` pieces; 1: the
+// straight distance).
+double width_at(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double w, int steps) {
+  double length = 0;
+  gp_Pnt last = iso_point(s, along_u, t_a, w);
+  for (int i = 1; i <= steps; ++i) {
+    const gp_Pnt p = iso_point(s, along_u, t_a + (t_b - t_a) * i / steps, w);
+    length += p.Distance(last);
+    last = p;
+  }
+  return length;
+}
+
+// width_at, at samples over the other parameter's range [lo, hi].
+std::vector<double> strip_widths(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo,
+                                 double hi, int steps) {
+  std::vector<double> d;
+  for (int j = 0; j <= kSamples / 3; ++j)
+    d.push_back(width_at(s, along_u, t_a, t_b, lo + (hi - lo) * (j + 0.5) / (kSamples / 3 + 1), steps));
+  return d;
+}
+
 // Median distance in space between the iso-lines t_a and t_b (u = t when
 // along_u), over the other parameter's range [lo, hi]: the width of the strip
 // a split between them would leave.
 double strip_width(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi) {
-  std::vector<double> d;
-  for (int j = 0; j <= kSamples / 3; ++j) {
-    const double w = lo + (hi - lo) * (j + 0.5) / (kSamples / 3 + 1);
-    d.push_back(iso_point(s, along_u, t_a, w).Distance(iso_point(s, along_u, t_b, w)));
-  }
+  std::vector<double> d = strip_widths(s, along_u, t_a, t_b, lo, hi, 1);
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return d[d.size() / 2];
+}
+
+// True when the strip between the iso-lines t_a and t_b narrows inside to
+// under `band`, wider than `band` on both sides of that place, and there its
+// two sides meet at less than kSliverDeg (its width changes by less than
+// tan(kSliverDeg) per unit length along it, either way): a blunt trailing
+// edge's base whose thickness passes through zero along the span, a face
+// there thinner than any element and its triangles slivers. A cap narrowing
+// to its round nose (its sides meeting at a large angle), a strip narrow all
+// along, or one tapering into a span collapsed onto a curve is no pinch.
+bool strip_pinches(const Geom_BSplineSurface& s, bool along_u, double t_a, double t_b, double lo, double hi,
+                   double band) {
+  constexpr double kSliverDeg = 12;
+  const double slope = std::tan(kSliverDeg * M_PI / 180), collapsed = 1e-3 * band;
+  constexpr int kAcross = 8;  // widths over the surface: a polyline of this many pieces across
+  const std::vector<double> d = strip_widths(s, along_u, t_a, t_b, lo, hi, kAcross);
+  const double step = (hi - lo) / d.size();  // between samples
+  for (size_t i = 1; i + 1 < d.size(); ++i) {
+    if (!(d[i] < band)) continue;
+    bool wide[2] = {false, false};
+    for (int k = 0; k < 2; ++k)
+      for (size_t j = i; k == 0 ? j-- > 0 : ++j < d.size();) {
+        if (!(d[j] > collapsed)) break;
+        if (d[j] > band) {
+          wide[k] = true;
+          break;
+        }
+      }
+    if (!wide[0] || !wide[1]) continue;
+    // The slope an eighth of a sample step either way.
+    const double w = lo + step * (i + 0.5);
+    const gp_Pnt here = iso_point(s, along_u, t_a, w);
+    bool sliver = true;
+    for (const double dw : {-step / 8, step / 8}) {
+      const double run = here.Distance(iso_point(s, along_u, t_a, w + dw));
+      sliver = sliver && std::abs(width_at(s, along_u, t_a, t_b, w + dw, kAcross) - d[i]) < slope * run;
+    }
+    if (sliver) return true;
+  }
+  return false;
 }
 
 // Largest distance of a sample of `a` from the polyline `b`.
@@ -172,7 +231,7 @@ double fold_back_gap(const Geom_BSplineSurface& s, bool along_u, double c, doubl
 }
 
 std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std::vector<std::pair<double, double>> cand,
-                                double t0, double t1, double lo, double hi, double min_width) {
+                                double t0, double t1, double lo, double hi, double min_width, double border_width) {
   for (bool dropped = true; dropped && !cand.empty();) {
     dropped = false;
     double narrowest = min_width;
@@ -182,7 +241,10 @@ std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std:
       const double lower = i == 0 ? cand[0].second : i == cand.size() ? cand[i - 1].second
                                                                        : std::min(cand[i - 1].second, cand[i].second);
       const size_t weaker = i == 0 ? 0 : i == cand.size() ? i - 1 : (cand[i - 1].second <= cand[i].second ? i - 1 : i);
-      if ((i == 0 || i == cand.size()) && lower >= 2) continue;  // a fold by the border
+      // A fold by the border stays, unless the strip behind it pinches
+      // (strip_pinches: a face there would be thinner than any element).
+      if ((i == 0 || i == cand.size()) && lower >= 2 && !strip_pinches(s, along_u, a, b, lo, hi, border_width))
+        continue;
       const double w = strip_width(s, along_u, a, b, lo, hi);
       if (w < narrowest) narrowest = w, drop = weaker;
     }

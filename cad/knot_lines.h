@@ -54,8 +54,11 @@ double fold_back_gap(const Geom_BSplineSurface& s, bool along_u, double c, doubl
 // meshes into triangles thinner than the elements: of the two lines that
 // bound it, the weaker goes (a jump before a fold; of folds close together,
 // as on a leading edge of small radius where every knot turns the normal,
-// the sharpest stays). A fold next to the face's border stays.
+// the sharpest stays). A fold next to the face's border stays, unless the
+// strip it leaves there pinches to under `border_width` inside (a blunt
+// trailing edge whose base thickness passes through zero along the span,
+// measured over the surface).
 std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std::vector<std::pair<double, double>> cand,
-                                double t0, double t1, double lo, double hi, double min_width);
+                                double t0, double t1, double lo, double hi, double min_width, double border_width);
 
 }  // namespace sizemesh::detail

@@ -226,10 +226,12 @@ TopoDS_Shape collapse_strips(const TopoDS_Shape& shape, double width,
 TopoDS_Shape planar_faces(const TopoDS_Shape& shape, double tol, const TopTools_DataMapOfShapeInteger& source,
                           const Follow& follow, int& rebuilt);
 
-// cad/sewn_edges.cpp: edges between two planes of a sewn `shape` whose tolerance grew
-// past 100 times the sewing's `tol` get their curves on both faces projected
-// afresh from the edge's 3D curve, and tolerances made the least that holds
-// (the shape is changed in place). Returns how many became tighter.
+// cad/sewn_edges.cpp: edges of a sewn `shape` whose tolerance grew past 100
+// times the sewing's `tol`, between two planes or between planes and one
+// curved face, get their curves on the planes projected afresh from the
+// edge's 3D curve (rebuilt first from the curved face's curve, when there is
+// one), and tolerances made the least that holds (the shape is changed in
+// place). Returns how many became tighter.
 int mend_sewn_edges(const TopoDS_Shape& shape, double tol);
 
 // The same rebuild on a copy of faces not yet sewn, each face checked alone;

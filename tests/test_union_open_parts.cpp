@@ -30,7 +30,9 @@ TEST_CASE("a wing whose tips are slits and that carries its planform plane close
   // is split between its slit edges, the halves sew, the plane is taken out.
   // Each half's root and tip caps collapse onto the chord, and over an area
   // where the blunt trailing edge meets them: they are split off the skin,
-  // put on their planes, and the two halves of each cap merged.
+  // put on their planes, and the two halves of each cap merged. The blunt
+  // trailing edge's base splits off each half at its crease (the spline's
+  // C0 knot line, 90 degrees): root cap, tip cap, two skins, two base halves.
   const Model m = load_model(test::model_path("wing_blunt_te_openvsp.stp"));
   const Preparation& p = m.info().preparation;
   REQUIRE(p.components.size() == 1);
@@ -38,7 +40,7 @@ TEST_CASE("a wing whose tips are slits and that carries its planform plane close
   CHECK(p.internal_faces_removed == 1);
   CHECK(m.closed());
   CHECK(p.faces_made_planar == 4);
-  CHECK(m.num_faces() == 4);
+  CHECK(m.num_faces() == 6);
   CHECK(m.info().solids == 1);
   CHECK(p.half_model_axis == -1);
 }
