@@ -43,19 +43,20 @@ double elements_across(const Geometry& g, const BackgroundMesh& bg, const Sizing
   return mu;
 }
 
-// The width of one face across itself at each of its boundary vertices: from
-// the vertex, rays in uv along the inward normals (perpendicular in space to
-// the adjacent boundary edges, in the tangent plane) to the first boundary
-// edge they cross; the width is the distance in space to that crossing.
-// Seams and pole edges are no boundary. A crossing on a curve that meets the
-// vertex's own (other) curve at a point nearer than 10 widths is a corner
-// closing, not a thin region, and is passed over. Results: (global vertex, width).
-void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& patch, const SizingParams& p,
-                 const std::unordered_map<uint64_t, int>& edge_of, std::vector<std::pair<int, double>>& out) {
-  struct BEdge {
-    int a, b, curve;  // local vertices (interior on the left going a -> b), curve id
-  };
-  std::vector<BEdge> border;
+// A patch's boundary edges (local vertices a -> b, the patch's inside on the
+// left): on the composite face's border, and on crossed curves (portals into
+// the next face of the same composite).
+struct BEdge {
+  int a, b, curve;
+};
+struct PatchBorder {
+  std::vector<BEdge> border, portal;
+  std::vector<char> seam;  // per border edge: a seam or pole edge, no border
+};
+
+PatchBorder patch_border(const BackgroundMesh& bg, const FacePatch& patch, const SizingParams& p,
+                         const std::unordered_map<uint64_t, int>& edge_of) {
+  PatchBorder out;
   std::unordered_map<uint64_t, int> seen;  // global pair -> count among boundary edges
   for (size_t t = 0; t < patch.tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
@@ -65,18 +66,100 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
       if (ga == gb) continue;  // collapsed onto a pole
       auto it = edge_of.find(edge_key(ga, gb));
       const int curve = it == edge_of.end() ? 0 : bg.edge_curve[it->second];
-      if (p.crossed(curve)) continue;  // inside a composite face: no border
-      border.push_back({a, b, curve});
+      if (p.crossed(curve)) {
+        out.portal.push_back({a, b, curve});
+        continue;
+      }
+      out.border.push_back({a, b, curve});
       ++seen[edge_key(ga, gb)];
     }
-  auto is_seam = [&](const BEdge& e) { return seen[edge_key(patch.vertex[e.a], patch.vertex[e.b])] > 1; };
-  std::vector<char> seam(border.size());
-  for (size_t i = 0; i < border.size(); ++i) seam[i] = is_seam(border[i]);
+  out.seam.resize(out.border.size());
+  for (size_t i = 0; i < out.border.size(); ++i)
+    out.seam[i] = seen[edge_key(patch.vertex[out.border[i].a], patch.vertex[out.border[i].b])] > 1;
+  return out;
+}
+
+// Direction in uv of face `face` at `uv` along the space vector `d` projected
+// on its tangent plane; false where the surface is singular.
+bool uv_direction(const SurfaceD1& s, const Vec3& d, Vec2& dir) {
+  Eigen::Matrix2d jtj;
+  jtj << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
+  if (!(std::abs(jtj.determinant()) > 0)) return false;
+  dir = jtj.inverse() * Vec2(s.du.dot(d), s.dv.dot(d));
+  return dir.norm() > 0;
+}
+
+// Where the ray o + s dir (s > 0) in uv crosses the edge p -> p + q: s and the
+// edge's parameter r in [0, 1]; false when it does not.
+bool ray_cross(const Vec2& o, const Vec2& dir, const Vec2& p, const Vec2& q, double& sray, double& r) {
+  const double det = dir.x() * (-q.y()) - dir.y() * (-q.x());
+  if (std::abs(det) < 1e-300) return false;
+  const Vec2 w = p - o;
+  sray = (w.x() * (-q.y()) - w.y() * (-q.x())) / det;
+  r = (dir.x() * w.y() - dir.y() * w.x()) / det;
+  return sray > 0 && r >= 0 && r <= 1;
+}
+
+// Length over face `face` of the straight uv segment a -> b (a polyline of
+// a few surface points): the width crossed on one face of a composite.
+double length_over(const Geometry& g, int face, const Vec2& a, const Vec2& b, const Vec3& xa, const Vec3& xb) {
+  constexpr int kSteps = 6;
+  double length = 0;
+  Vec3 last = xa;
+  for (int i = 1; i < kSteps; ++i) {
+    const Vec3 x = g.eval_face(face, a + (b - a) * (static_cast<double>(i) / kSteps)).p;
+    length += (x - last).norm();
+    last = x;
+  }
+  return length + (xb - last).norm();
+}
+
+// The width of each face across itself at each of its boundary vertices:
+// from the vertex, rays in uv along the inward normals (perpendicular in
+// space to the adjacent boundary edges, in the tangent plane) to the first
+// boundary edge they cross; the width is the distance in space to that
+// crossing. Seams and pole edges are no boundary. A crossing on a curve that
+// meets the vertex's own (other) curve at a point nearer than 10 widths is a
+// corner closing, not a thin region, and is passed over. A ray that reaches a
+// crossed curve first goes on into the next face of the composite (its
+// direction carried in space across the curve, a few faces at most) and the
+// width is its length over the faces crossed: a composite face of several
+// narrow faces (a blunt trailing edge's base, split at its middle) is as
+// narrow as it is. Results: (global vertex, width).
+void face_widths(const Geometry& g, const BackgroundMesh& bg, size_t pi, const std::vector<PatchBorder>& borders,
+                 const std::unordered_map<uint64_t, std::vector<std::pair<int, int>>>& portals,
+                 std::vector<std::pair<int, double>>& out) {
+  constexpr int kHops = 4;  // faces a ray crosses into at most
+  const FacePatch& patch = bg.patches[pi];
+  const std::vector<BEdge>& border = borders[pi].border;
+  const std::vector<char>& seam = borders[pi].seam;
   // B-rep points that end the curve a vertex lies on (or the point itself).
   auto ends = [&](int v, int curve, int out_pts[2]) {
     out_pts[0] = out_pts[1] = -1;
     if (bg.dim[v] == 0) out_pts[0] = bg.entity[v];
     else if (curve > 0) out_pts[0] = g.curve_start_point(curve), out_pts[1] = g.curve_end_point(curve);
+  };
+  // A border crossing that is a corner closing on x0's curve `curve` (own: its end points).
+  auto corner = [&](const BEdge& h, int curve, const int* own, const Vec3& x0, double width) {
+    bool c = false;
+    for (int k = 0; k < 2; ++k)
+      if (const int pt = own[k]; pt > 0 && h.curve > 0 && h.curve != curve &&
+          (g.curve_start_point(h.curve) == pt || g.curve_end_point(h.curve) == pt))
+        c |= (g.point_xyz(pt) - x0).norm() < 10 * width;
+    return c;
+  };
+  // The nearest portal of patch `at` the ray crosses (skipping `skip`, a portal index): its index, s and r.
+  auto first_portal = [&](size_t at, const Vec2& o, const Vec2& dir, int skip, double& s_best, double& r_best) {
+    const FacePatch& pa = bg.patches[at];
+    int best = -1;
+    for (size_t j = 0; j < borders[at].portal.size(); ++j) {
+      if (static_cast<int>(j) == skip) continue;
+      const BEdge& h = borders[at].portal[j];
+      double sray, r;
+      if (ray_cross(o, dir, pa.uv[h.a], pa.uv[h.b] - pa.uv[h.a], sray, r) && sray < s_best)
+        s_best = sray, r_best = r, best = static_cast<int>(j);
+    }
+    return best;
   };
   for (size_t i = 0; i < border.size(); ++i) {
     if (seam[i]) continue;
@@ -85,35 +168,76 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
     const SurfaceD1 s = g.eval_face(patch.face, mid);
     const Vec3 along = bg.xyz[patch.vertex[e.b]] - bg.xyz[patch.vertex[e.a]];
     const Vec3 inward = s.du.cross(s.dv).cross(along);  // left of a -> b in uv, in space
-    Eigen::Matrix2d jtj;
-    jtj << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
-    if (!(std::abs(jtj.determinant()) > 0) || !(inward.norm() > 0)) continue;
-    const Vec2 dir = jtj.inverse() * Vec2(s.du.dot(inward), s.dv.dot(inward));
+    Vec2 dir;
+    if (!(inward.norm() > 0) || !uv_direction(s, inward, dir)) continue;
     for (int from : {e.a, e.b}) {
       const Vec2 o = patch.uv[from];
       const Vec3 xo = bg.xyz[patch.vertex[from]];
       int own[2];
       ends(patch.vertex[from], e.curve, own);
-      double best = kNoLimit;
+      double best = kNoLimit, best_s = kNoLimit;
       for (size_t j = 0; j < border.size(); ++j) {
         const BEdge& h = border[j];
         if (seam[j] || h.a == from || h.b == from) continue;
-        const Vec2 p = patch.uv[h.a], q = patch.uv[h.b] - p;
-        const double det = dir.x() * (-q.y()) - dir.y() * (-q.x());
-        if (std::abs(det) < 1e-300) continue;
-        const Vec2 w = p - o;
-        const double sray = (w.x() * (-q.y()) - w.y() * (-q.x())) / det;
-        const double r = (dir.x() * w.y() - dir.y() * w.x()) / det;
-        if (!(sray > 0) || r < 0 || r > 1) continue;
+        double sray, r;
+        if (!ray_cross(o, dir, patch.uv[h.a], patch.uv[h.b] - patch.uv[h.a], sray, r)) continue;
         const Vec3 hit = (1 - r) * bg.xyz[patch.vertex[h.a]] + r * bg.xyz[patch.vertex[h.b]];
         const double width = (hit - xo).norm();
-        if (!(width < best)) continue;
-        bool corner = false;
-        for (int pt : own)
-          if (pt > 0 && h.curve > 0 && h.curve != e.curve &&
-              (g.curve_start_point(h.curve) == pt || g.curve_end_point(h.curve) == pt))
-            corner |= (g.point_xyz(pt) - xo).norm() < 10 * width;
-        if (!corner) best = width;
+        if (!(width < best) || corner(h, e.curve, own, xo, width)) continue;
+        best = width, best_s = sray;
+      }
+      // Into the composite's next faces when a crossed curve comes first.
+      double s_portal = best_s, r = 0;
+      int k = borders[pi].portal.empty() ? -1 : first_portal(pi, o, dir, -1, s_portal, r);
+      if (k >= 0) {
+        best = kNoLimit;
+        size_t at = pi;
+        Vec2 uv_at = o, dir_at = dir;
+        Vec3 x_at = xo;
+        double walked = 0;
+        for (int hop = 0; hop < kHops && k >= 0; ++hop) {
+          const FacePatch& pa = bg.patches[at];
+          const BEdge& h = borders[at].portal[k];
+          const Vec2 uv_hit = (1 - r) * pa.uv[h.a] + r * pa.uv[h.b];
+          const Vec3 x_hit = (1 - r) * bg.xyz[pa.vertex[h.a]] + r * bg.xyz[pa.vertex[h.b]];
+          walked += length_over(g, pa.face, uv_at, uv_hit, x_at, x_hit);
+          // The same edge seen from the other side.
+          const int ga = pa.vertex[h.a], gb = pa.vertex[h.b];
+          const auto it = portals.find(edge_key(ga, gb));
+          if (it == portals.end()) break;
+          int next = -1, next_k = -1;
+          for (const auto& [q, j] : it->second)
+            if (q != static_cast<int>(at) || j != k) next = q, next_k = j;
+          if (next < 0) break;
+          const FacePatch& pn = bg.patches[next];
+          const BEdge& hn = borders[next].portal[next_k];
+          const double rn = pn.vertex[hn.a] == ga ? r : 1 - r;
+          const Vec2 uv_next = (1 - rn) * pn.uv[hn.a] + rn * pn.uv[hn.b];
+          const SurfaceD1 sa = g.eval_face(pa.face, uv_hit), sn = g.eval_face(pn.face, uv_next);
+          Vec2 dir_next;
+          if (!uv_direction(sn, sa.du * dir_at.x() + sa.dv * dir_at.y(), dir_next)) break;
+          at = next, uv_at = uv_next, dir_at = dir_next, x_at = x_hit;
+          // The nearest border crossing in the next face, then its portals.
+          double s_border = kNoLimit, r_border = 0;
+          const BEdge* hit_border = nullptr;
+          for (size_t j = 0; j < borders[at].border.size(); ++j) {
+            const BEdge& hb = borders[at].border[j];
+            double sray, rr;
+            if (borders[at].seam[j] ||
+                !ray_cross(uv_at, dir_at, pn.uv[hb.a], pn.uv[hb.b] - pn.uv[hb.a], sray, rr) || !(sray < s_border))
+              continue;
+            const Vec3 hit = (1 - rr) * bg.xyz[pn.vertex[hb.a]] + rr * bg.xyz[pn.vertex[hb.b]];
+            if (corner(hb, e.curve, own, xo, walked + (hit - x_at).norm())) continue;
+            s_border = sray, r_border = rr, hit_border = &hb;
+          }
+          s_portal = s_border;
+          k = first_portal(at, uv_at, dir_at, next_k, s_portal, r);
+          if (k < 0 && hit_border) {
+            const Vec2 uv_end = (1 - r_border) * pn.uv[hit_border->a] + r_border * pn.uv[hit_border->b];
+            const Vec3 x_end = (1 - r_border) * bg.xyz[pn.vertex[hit_border->a]] + r_border * bg.xyz[pn.vertex[hit_border->b]];
+            best = walked + length_over(g, pn.face, uv_at, uv_end, x_at, x_end);
+          }
+        }
       }
       if (best < kNoLimit) out.emplace_back(patch.vertex[from], best);
     }
@@ -135,9 +259,21 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, const FacePatch& p
 // enough for that (elements_across), mu_d where it is curved.
 std::vector<double> face_proximity_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   const std::unordered_map<uint64_t, int> edge_of = bg.edge_index();
+  std::vector<PatchBorder> borders(bg.patches.size());
+  tbb::parallel_for(0, static_cast<int>(bg.patches.size()), [&](int i) {
+    if (!bg.patches[i].tris.empty()) borders[i] = patch_border(bg, bg.patches[i], p, edge_of);
+  });
+  // Crossed-curve edges -> (patch, portal) of each side.
+  std::unordered_map<uint64_t, std::vector<std::pair<int, int>>> portals;
+  for (size_t i = 0; i < borders.size(); ++i)
+    for (size_t j = 0; j < borders[i].portal.size(); ++j) {
+      const BEdge& h = borders[i].portal[j];
+      portals[edge_key(bg.patches[i].vertex[h.a], bg.patches[i].vertex[h.b])].emplace_back(static_cast<int>(i),
+                                                                                           static_cast<int>(j));
+    }
   std::vector<std::vector<std::pair<int, double>>> widths(bg.patches.size());
   tbb::parallel_for(0, static_cast<int>(bg.patches.size()), [&](int i) {
-    if (!bg.patches[i].tris.empty()) face_widths(g, bg, bg.patches[i], p, edge_of, widths[i]);
+    if (!bg.patches[i].tris.empty()) face_widths(g, bg, i, borders, portals, widths[i]);
   });
   std::vector<double> h(bg.num_vertices(), kNoLimit);
   for (size_t i = 0; i < widths.size(); ++i)
