@@ -120,7 +120,7 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
       ->group(sizing);
   app.add_flag("--aero", cl.aero,
                "the gridding workshops' defaults: --le-spacing and --te-spacing 0.001 (0.1% of the local chord) "
-               "where not given (with the default beta, 1.2, the workshops' growth bound)")
+               "and --te-cells 4 where not given (with the default beta, 1.2, the workshops' growth bound)")
       ->group(sizing);
   app.add_option("--config", cl.options.config,
                  "JSON config: the globals above and local phi_c, mu_d, beta, sizes per point/curve/face "
@@ -152,6 +152,7 @@ void finish_run_options(const CLI::App& app, RunCommandLine& cl) {
   if (cl.aero) {
     if (app.count(flag_of("le_spacing")) == 0) o.sizing.le_spacing = SizingParams::kAeroSpacing;
     if (app.count(flag_of("te_spacing")) == 0) o.sizing.te_spacing = SizingParams::kAeroSpacing;
+    if (app.count(flag_of("te_cells")) == 0) o.sizing.te_cells = SizingParams::kAeroTeCells;
   }
   for (const SizingOption& opt : sizing_options()) {
     if (opt.set) opt.set(o.sizing, cl.words[opt.key]);

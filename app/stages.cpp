@@ -2,6 +2,7 @@
 #include "app/stages.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <set>
@@ -126,11 +127,22 @@ void estimate(RunResult& r, const RunOptions& o, const WarningSink&) {
   if (!w.empty()) {
     std::cout << "wing features: " << w.leading.size() << " leading edge curves (" << w.leading_length << " long), "
               << w.trailing.size() << " trailing edge curves (" << w.trailing_length << "), chord " << w.chord_min
-              << " to " << w.chord_max << "; chordwise spacing ";
+              << " to " << w.chord_max;
+    if (!w.bases.empty()) {
+      double lo = INFINITY, hi = 0;
+      for (const WingFeatures::Base& b : w.bases) lo = std::min(lo, b.width_min), hi = std::max(hi, b.width_max);
+      std::cout << ", " << w.bases.size() << " blunt trailing edge base" << (w.bases.size() > 1 ? "s" : "") << " ("
+                << lo << " to " << hi << " wide)";
+    }
+    if (!w.tips.empty()) std::cout << ", " << w.tips.size() << " tip" << (w.tips.size() > 1 ? "s" : "");
+    std::cout << "; chordwise spacing ";
     if (r.params.le_spacing > 0 || r.params.te_spacing > 0)
-      std::cout << r.params.le_spacing << " and " << r.params.te_spacing << " of the local chord\n";
+      std::cout << r.params.le_spacing << " and " << r.params.te_spacing << " of the local chord";
     else
-      std::cout << "off (--le-spacing, --te-spacing, --aero)\n";
+      std::cout << "off (--le-spacing, --te-spacing, --aero)";
+    if (!w.bases.empty() && r.params.te_cells > 0) std::cout << "; " << r.params.te_cells << " elements across a base";
+    if (!w.tips.empty() && r.params.tip_spacing > 0) std::cout << "; " << r.params.tip_spacing << " of the chord on tips";
+    std::cout << "\n";
   }
   std::cout << "estimate: about " << static_cast<long long>(r.estimate.total + 0.5) << " triangles\n";
 }

@@ -27,7 +27,7 @@ if os.environ.get("SIZEMESH_PARAVIEW_PYTHON"):
 
 # Codes of sizemesh's Limit enum (sizing/size_map.h) as written to limited_by (mesh and background).
 LIMITS = ["h_max", "curvature", "face proximity", "curve length", "gap (fluid)", "thickness (solid)",
-          "user size", "h_min", "far-field size", "size source", "leading/trailing edge"]
+          "user size", "h_min", "far-field size", "size source", "wing feature"]
 LIMIT_COLOURS = [(0.65, 0.65, 0.65), (0.89, 0.10, 0.11), (0.22, 0.49, 0.72), (0.30, 0.69, 0.29),
                  (0.60, 0.31, 0.64), (1.00, 0.50, 0.00), (0.97, 0.51, 0.75), (0.65, 0.34, 0.16),
                  (0.10, 0.75, 0.80), (1.00, 0.85, 0.10), (0.05, 0.05, 0.05)]

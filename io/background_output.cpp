@@ -40,6 +40,14 @@ void write_background_sizes(const std::string& path, const BackgroundMesh& bg, c
       if (std::count(wing->leading.begin(), wing->leading.end(), c)) code[v] = 1;
       if (std::count(wing->trailing.begin(), wing->trailing.end(), c)) code[v] = 2;
     }
+    // Blunt trailing edges' bases: 3 inside (their creases stay 2); tips' caps 4.
+    for (int v = 0; v < bg.num_vertices(); ++v) {
+      if (bg.dim[v] != 2) continue;
+      for (const WingFeatures::Base& b : wing->bases)
+        if (std::count(b.faces.begin(), b.faces.end(), bg.entity[v])) code[v] = 3;
+      for (const WingFeatures::Tip& t : wing->tips)
+        if (std::count(t.faces.begin(), t.faces.end(), bg.entity[v])) code[v] = 4;
+    }
     fields.push_back({"wing_feature", code});
   }
   write_background(path, bg, fields, {{"gradient_ratio", check_gradation(bg, m).triangle_ratio}});

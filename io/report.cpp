@@ -48,13 +48,21 @@ nlohmann::json report_json(const RunReport& r) {
                                             {"small_angle", r.virtual_reasons.small_angle},
                                             {"smooth", r.virtual_reasons.smooth}}}};
   }
-  if (r.wing)
+  if (r.wing) {
+    nlohmann::json bases = nlohmann::json::array();
+    for (const WingFeatures::Base& b : r.wing->bases)
+      bases.push_back({{"faces", b.faces}, {"width_min", b.width_min}, {"width_max", b.width_max}});
+    nlohmann::json tips = nlohmann::json::array();
+    for (const WingFeatures::Tip& t : r.wing->tips) tips.push_back({{"faces", t.faces}, {"chord", t.chord}});
     j["wing"] = {{"leading_edges", r.wing->leading},
                  {"trailing_edges", r.wing->trailing},
                  {"leading_length", r.wing->leading_length},
                  {"trailing_length", r.wing->trailing_length},
                  {"chord_min", r.wing->chord_min},
-                 {"chord_max", r.wing->chord_max}};
+                 {"chord_max", r.wing->chord_max},
+                 {"blunt_bases", bases},
+                 {"tips", tips}};
+  }
   j["preparation"] = {{"components", components},
                       {"union_requested", prep.union_requested},
                       {"fused", prep.fused},

@@ -1,5 +1,6 @@
 #include "sizing/initial_sizes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/stopwatch.h"
@@ -19,10 +20,12 @@ double face_beta(const SizingParams& p, int face) {
 }
 
 // Chordwise spacing on the wing's leading and trailing edges (their curves
-// and end points): the spacing share times the chord there.
+// and end points): the spacing share times the chord there. On a blunt
+// trailing edge's base (its faces, creases and corners): the base's width
+// there over te_cells. On a wing tip's cap: tip_spacing times the tip's chord.
 std::vector<double> aero_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
   std::vector<double> h(bg.num_vertices(), kNoLimit);
-  if (!(p.le_spacing > 0) && !(p.te_spacing > 0)) return h;
+  if (!(p.le_spacing > 0) && !(p.te_spacing > 0) && !(p.te_cells > 0) && !(p.tip_spacing > 0)) return h;
   const WingFeatures& w = p.wing;
   auto apply = [&](const std::vector<int>& curves, const std::vector<int>& composite, double share, bool leading) {
     if (!(share > 0)) return;
@@ -40,6 +43,21 @@ std::vector<double> aero_sizes(const Geometry& g, const BackgroundMesh& bg, cons
   };
   apply(w.leading, w.leading_curve_composite, p.le_spacing, true);
   apply(w.trailing, w.trailing_curve_composite, p.te_spacing, false);
+  // Vertices on the faces (sorted ids), their curves and points.
+  auto on_faces = [&](const std::vector<int>& faces, const auto& size_at) {
+    for (int v = 0; v < bg.num_vertices(); ++v)
+      for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u)
+        if (std::binary_search(faces.begin(), faces.end(), bg.use_face[u])) {
+          const double s = size_at(v);
+          if (s > 0) h[v] = std::min(h[v], s);
+          break;
+        }
+  };
+  if (p.te_cells > 0)
+    for (size_t b = 0; b < w.bases.size(); ++b)
+      on_faces(w.bases[b].faces, [&](int v) { return w.base_width_at(bg.xyz[v], static_cast<int>(b)) / p.te_cells; });
+  if (p.tip_spacing > 0)
+    for (const WingFeatures::Tip& tip : w.tips) on_faces(tip.faces, [&](int) { return p.tip_spacing * tip.chord; });
   return h;
 }
 

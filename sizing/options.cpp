@@ -31,7 +31,14 @@ const std::vector<SizingOption>& sizing_options() {
       {"le_spacing", "--le-spacing", &P::le_spacing, nullptr, {},
        "size at leading edges as a share of the local chord (0.001: 0.1%), graded away at beta; 0: off", 0.0, 1.0},
       {"te_spacing", "--te-spacing", &P::te_spacing, nullptr, {},
-       "size at sharp trailing edges as a share of the local chord, graded away at beta; 0: off", 0.0, 1.0},
+       "size at trailing edges (sharp, and the creases of blunt ones) as a share of the local chord, graded away "
+       "at beta; 0: off", 0.0, 1.0},
+      {"te_cells", "--te-cells", &P::te_cells, nullptr, {},
+       "elements across a blunt trailing edge's base (its local width over this count, on the base and its "
+       "creases), graded away at beta; 0: off", 0.0, 1000.0},
+      {"tip_spacing", "--tip-spacing", &P::tip_spacing, nullptr, {},
+       "size on wing tip caps (their faces and edges) as a share of the tip chord, graded away at beta; 0: off",
+       0.0, 1.0},
       {"max_triangles", "--max-triangles", &P::max_triangles, nullptr, {},
        "refuse, before meshing, a size map that asks for more triangles (an estimate from the map)", 1.0, 1e15},
   };
@@ -56,7 +63,9 @@ std::string remedy(Limit l) {
     case Limit::HMin: return flag_of("h_min");
     case Limit::FarField: return "";
     case Limit::Source: return "the sources' sizes";
-    case Limit::Aero: return flag_of("le_spacing") + " or " + flag_of("te_spacing");
+    case Limit::Aero:
+      return flag_of("le_spacing") + ", " + flag_of("te_spacing") + ", " + flag_of("te_cells") + " or " +
+             flag_of("tip_spacing");
   }
   return flag_of("h_min");
 }

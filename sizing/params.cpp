@@ -143,10 +143,12 @@ void validate(const SizingParams& p, double diagonal, int points, int curves, in
   if (h_min > h_max) throw Error("h_min (" + num(h_min) + ") is larger than h_max (" + num(h_max) + ")");
   if (!(p.deviation >= 0) || !std::isfinite(p.deviation))
     throw Error("deviation must be zero (none) or positive, got " + num(p.deviation));
-  for (const double* s : {&p.le_spacing, &p.te_spacing})
+  for (const double* s : {&p.le_spacing, &p.te_spacing, &p.tip_spacing})
     if (!(*s >= 0 && *s < 1))
-      throw Error(std::string(s == &p.le_spacing ? "le_spacing" : "te_spacing") +
+      throw Error(std::string(s == &p.le_spacing ? "le_spacing" : s == &p.te_spacing ? "te_spacing" : "tip_spacing") +
                   " must be a share of the chord in [0, 1) (0: off), got " + num(*s));
+  if (!(p.te_cells >= 0 && p.te_cells <= 1000))
+    throw Error("te_cells must be a count of elements in [0, 1000] (0: off), got " + num(p.te_cells));
   if (!(p.max_triangles >= 1) || !std::isfinite(p.max_triangles))
     throw Error("max_triangles must be at least 1, got " + num(p.max_triangles));
   for (const auto& [id, v] : p.curve_phi_c_deg) check_phi(v, "curve " + std::to_string(id) + ": ");

@@ -51,6 +51,12 @@ struct SizingParams {
   // chord (0: off); --aero sets both to 0.001, the workshops' medium grid.
   double le_spacing = 0, te_spacing = 0;
   static constexpr double kAeroSpacing = 0.001;
+  // Elements across a blunt trailing edge's base (0: off): its width there
+  // over this count, on the base and its creases; --aero sets 4.
+  double te_cells = 0;
+  static constexpr double kAeroTeCells = 4;
+  // Size on a wing's tip caps as a share of the tip's chord (0: off).
+  double tip_spacing = 0;
   // The wing features of the model (topology/wing_features.h), found with
   // the composite faces; the spacings above act on their curves.
   WingFeatures wing;

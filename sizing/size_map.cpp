@@ -14,7 +14,7 @@ const char* limit_name(Limit l) {
     case Limit::HMin: return "h_min";
     case Limit::FarField: return "far-field size";
     case Limit::Source: return "size source";
-    case Limit::Aero: return "leading/trailing edge";
+    case Limit::Aero: return "wing feature";
   }
   return "?";
 }

@@ -118,3 +118,41 @@ TEST_CASE("the flag --aero sets the workshop spacings where not given; the repor
   CHECK(j.at("wing").at("leading_length").get<double>() > 1381);
   CHECK(test::run_sizemesh(test::model_path("onera_m6_wing.stp") + " -q --le-spacing 1.5").status == 2);
 }
+
+TEST_CASE("wing tips: the caps at a free wing's ends, sized by --tip-spacing; none on a symmetry plane", "[models]") {
+  // OpenVSP's thick-trailing-edge half wing, meshed alone: a flat cap at
+  // each end (root chord 4 ft, tip chord 1), each closed by the skins and
+  // the blunt base.
+  RunOptions o = test::run_options("wing_blunt_te_openvsp.stp");
+  o.sizing.tip_spacing = 0.01;
+  const auto r = test::run_until(o);
+  const WingFeatures& w = r->params.wing;
+  REQUIRE(w.tips.size() == 2);
+  std::vector<double> chords = {w.tips[0].chord, w.tips[1].chord};
+  std::sort(chords.begin(), chords.end());
+  CHECK(chords[0] == Approx(1).epsilon(0.01));
+  CHECK(chords[1] == Approx(4).epsilon(0.01));
+  REQUIRE(r->mesh.failures.empty());
+  CHECK(r->report.quality.boundary_edges == 0);
+  // Each cap meshed at 1% of its chord: the mean edge of its triangles
+  // within 20% of it (the caps are flat: no curvature size comes under it).
+  const SurfaceMesh& m = r->mesh;
+  for (const WingFeatures::Tip& tip : w.tips) {
+    double sum = 0;
+    int n = 0;
+    for (size_t t = 0; t < m.tris.size(); ++t) {
+      if (std::find(tip.faces.begin(), tip.faces.end(), m.tri_face[t]) == tip.faces.end()) continue;
+      for (int k = 0; k < 3; ++k) sum += (m.xyz[m.tris[t][k]] - m.xyz[m.tris[t][(k + 1) % 3]]).norm(), ++n;
+    }
+    INFO("tip of chord " << tip.chord << ": " << n / 3 << " triangles, mean edge " << sum / n);
+    REQUIRE(n > 0);
+    CHECK(sum / n == Approx(0.01 * tip.chord).epsilon(0.2));
+  }
+  // The M6 cut by its symmetry plane: the root lies on the plane, no tip;
+  // its own tip is rounded (the leading edge runs on round it): no cap.
+  RunOptions half = test::run_options("onera_m6_wing.stp");
+  half.load.domain.symmetry_axis = 1;
+  const auto m6 = test::run_until(half, "topology");
+  CHECK(m6->params.wing.tips.empty());
+  CHECK_FALSE(m6->params.wing.leading.empty());
+}

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 namespace sizemesh {
 namespace {
@@ -37,7 +38,38 @@ int nearest(const std::vector<Vec3>& points, const std::vector<int>& comp, int c
   return best;
 }
 
+// Distance from x to the polyline p.
+double to_polyline(const std::vector<Vec3>& p, const Vec3& x) {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i + 1 < p.size(); ++i) {
+    const Vec3 e = p[i + 1] - p[i];
+    const double ee = e.squaredNorm(), t = ee > 0 ? std::clamp((x - p[i]).dot(e) / ee, 0.0, 1.0) : 0.0;
+    best = std::min(best, (p[i] + t * e - x).squaredNorm());
+  }
+  if (p.size() == 1) best = (p[0] - x).squaredNorm();
+  return std::sqrt(best);
+}
+
+double to_chain(const std::vector<std::vector<Vec3>>& chain, const Vec3& x) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& p : chain) best = std::min(best, to_polyline(p, x));
+  return best;
+}
+
+// Samples of curve c at kSamples + 1 parameters, its ends included.
+std::vector<Vec3> polyline(const Geometry& g, int c) {
+  double t0, t1;
+  g.curve_range(c, t0, t1);
+  std::vector<Vec3> out;
+  for (int i = 0; i <= kSamples; ++i) out.push_back(g.eval_curve(c, t0 + (t1 - t0) * i / kSamples));
+  return out;
+}
+
 }  // namespace
+
+double WingFeatures::base_width_at(const Vec3& x, int b) const {
+  return to_chain(bases[b].side[0], x) + to_chain(bases[b].side[1], x);
+}
 
 double WingFeatures::chord_at(const Vec3& x, int composite, bool leading_edge) const {
   const std::vector<Vec3>& other = leading_edge ? trailing_points : leading_points;
@@ -81,6 +113,85 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
       if (a == b) break;
     }
     sharp.push_back(c);
+  }
+  // Blunt bases: composites bounded by two long chains of creases (a crease
+  // continues into the next curve at a point where they leave it opposite
+  // ways), narrow against their length. Their creases are trailing-edge
+  // candidates of the skins across them.
+  struct Candidate {
+    int comp;
+    std::vector<int> chain[2];
+    double width;
+  };
+  std::vector<Candidate> candidates;
+  {
+    std::map<int, std::vector<int>> creases;  // composite -> its crease curves
+    std::map<int, int> skin_of;               // crease -> the composite across it
+    for (const auto& [c, u] : uses) {
+      if (u.size() != 2 || kind(c) != CurveKind::Angle || g.curve_degenerated(c)) continue;
+      if (!(turn(c) >= WingFeatures::kBaseTurnDeg) || turn(c) >= WingFeatures::kTrailingTurnDeg) continue;
+      const int a = root(u[0].face), b = root(u[1].face);
+      if (a == b) continue;
+      creases[a].push_back(c), creases[b].push_back(c);
+    }
+    auto leaving = [&](int c, int pt) {  // direction curve c leaves point pt
+      double t0, t1;
+      g.curve_range(c, t0, t1);
+      return g.curve_start_point(c) == pt ? Vec3(g.curve_tangent(c, t0)) : Vec3(-g.curve_tangent(c, t1));
+    };
+    for (const auto& [comp, curves] : creases) {
+      std::map<int, int> up;
+      for (int c : curves) up[c] = c;
+      auto top = [&](int c) {
+        while (up[c] != c) c = up[c] = up[up[c]];
+        return c;
+      };
+      for (size_t i = 0; i < curves.size(); ++i)
+        for (size_t j = i + 1; j < curves.size(); ++j)
+          for (int p : {g.curve_start_point(curves[i]), g.curve_end_point(curves[i])})
+            if (p > 0 && (p == g.curve_start_point(curves[j]) || p == g.curve_end_point(curves[j]))) {
+              const Vec3 a = leaving(curves[i], p), b = leaving(curves[j], p);
+              if (a.dot(b) < -0.8 * a.norm() * b.norm()) up[top(curves[i])] = top(curves[j]);
+            }
+      // The two longest chains are its sides (its ends, crossing the strip,
+      // may be creases too).
+      std::map<int, std::vector<int>> by_top;
+      for (int c : curves) by_top[top(c)].push_back(c);
+      std::vector<std::pair<double, std::vector<int>>> chains;
+      for (auto& [t, chain] : by_top) {
+        double length = 0;
+        for (int c : chain) length += g.curve_length(c);
+        chains.push_back({length, std::move(chain)});
+      }
+      if (chains.size() < 2) continue;
+      std::partial_sort(chains.begin(), chains.begin() + 2, chains.end(),
+                        [](const auto& a, const auto& b) { return a.first > b.first; });
+      Candidate cand{comp, {chains[0].second, chains[1].second}, 0};
+      std::vector<std::vector<Vec3>> lines[2];
+      double length[2] = {0, 0};
+      for (int k = 0; k < 2; ++k)
+        for (int c : cand.chain[k]) lines[k].push_back(polyline(g, c)), length[k] += g.curve_length(c);
+      std::vector<double> widths;
+      for (int k = 0; k < 2; ++k)
+        for (const auto& line : lines[k])
+          for (const Vec3& x : line) widths.push_back(to_chain(lines[1 - k], x));
+      std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+      cand.width = widths[widths.size() / 2];
+      // A strip: long against its width, and no more area than the width
+      // times its length (twice, for a strip that widens along the span).
+      double area = 0;
+      for (int f = 1; f <= g.num_faces(); ++f)
+        if (root(f) == comp) area += g.face_area(f);
+      if (!(cand.width > 0) || std::min(length[0], length[1]) < WingFeatures::kBaseAspect * cand.width ||
+          area > cand.width * (length[0] + length[1]))
+        continue;
+      for (int k = 0; k < 2; ++k)
+        for (int c : cand.chain[k]) {
+          const int skin = root(uses[c][0].face) == comp ? root(uses[c][1].face) : root(uses[c][0].face);
+          for (const Vec3& x : samples(g, c)) te_points.push_back(x), te_comp.push_back(skin), te_curve.push_back(c);
+        }
+      candidates.push_back(std::move(cand));
+    }
   }
   // Leading edges: smooth curves across the way to a trailing edge of their
   // composite, curved far more than the chord.
@@ -126,6 +237,85 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
     w.trailing.push_back(c);
     w.trailing_curve_composite.push_back(root(uses[c][0].face));
     w.trailing_length += g.curve_length(c);
+  }
+  // The bases whose creases all border skins with a leading edge, no wider
+  // than kBaseOverChord of the chord there: their creases are trailing edges.
+  const std::set<int> winged(w.leading_composite.begin(), w.leading_composite.end());
+  for (const Candidate& cand : candidates) {
+    bool ok = true;
+    std::vector<double> chords;
+    WingFeatures::Base base;
+    for (int k = 0; k < 2 && ok; ++k)
+      for (int c : cand.chain[k]) {
+        const int skin = root(uses[c][0].face) == cand.comp ? root(uses[c][1].face) : root(uses[c][0].face);
+        if (!winged.count(skin)) {
+          ok = false;
+          break;
+        }
+        base.side[k].push_back(polyline(g, c));
+        for (const Vec3& x : samples(g, c)) chords.push_back(w.chord_at(x, skin, false));
+      }
+    if (!ok) continue;
+    std::nth_element(chords.begin(), chords.begin() + chords.size() / 2, chords.end());
+    if (!(cand.width <= WingFeatures::kBaseOverChord * chords[chords.size() / 2])) continue;
+    for (int f = 1; f <= g.num_faces(); ++f)
+      if (root(f) == cand.comp) base.faces.push_back(f);
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (int k = 0; k < 2; ++k)
+      for (const auto& line : base.side[k])
+        for (const Vec3& x : line) {
+          const double width = to_chain(base.side[1 - k], x);
+          lo = std::min(lo, width), hi = std::max(hi, width);
+        }
+    base.width_min = lo, base.width_max = hi;
+    w.bases.push_back(std::move(base));
+    for (int k = 0; k < 2; ++k)
+      for (int c : cand.chain[k]) {
+        const int skin = root(uses[c][0].face) == cand.comp ? root(uses[c][1].face) : root(uses[c][0].face);
+        w.trailing.push_back(c);
+        w.trailing_curve_composite.push_back(skin);
+        w.trailing_length += g.curve_length(c);
+      }
+  }
+  // Tips: caps closed by the skins (and blunt bases) alone, a leading edge ending on them.
+  std::set<int> base_comps, le_ends;
+  for (const WingFeatures::Base& b : w.bases) base_comps.insert(root(b.faces[0]));
+  for (int c : w.leading) le_ends.insert(g.curve_start_point(c)), le_ends.insert(g.curve_end_point(c));
+  std::map<int, std::vector<int>> border;  // composite -> curves on its border
+  std::map<int, bool> closed_by_skins;
+  for (const auto& [c, u] : uses) {
+    if (g.curve_degenerated(c)) continue;
+    std::set<int> comps;
+    for (const Use& side : u) comps.insert(root(side.face));
+    if (comps.size() == 1 && u.size() == 2) continue;  // inside one composite
+    for (const Use& side : u) {
+      const int comp = root(side.face);
+      border[comp].push_back(c);
+      // Across a curve between classes (the cap on a symmetry plane, a far
+      // field) the cap is no wing's.
+      bool skins = u.size() == 2 && kind(c) != CurveKind::Marker;
+      for (const Use& other : u)
+        if (root(other.face) != comp)
+          skins = skins && (winged.count(root(other.face)) || base_comps.count(root(other.face)));
+      if (!closed_by_skins.count(comp)) closed_by_skins[comp] = true;
+      closed_by_skins[comp] = closed_by_skins[comp] && skins;
+    }
+  }
+  for (const auto& [comp, curves] : border) {
+    if (winged.count(comp) || base_comps.count(comp) || !closed_by_skins[comp]) continue;
+    bool le_end = false;
+    std::vector<Vec3> rim;
+    for (int c : curves) {
+      le_end = le_end || le_ends.count(g.curve_start_point(c)) || le_ends.count(g.curve_end_point(c));
+      for (const Vec3& x : samples(g, c)) rim.push_back(x);
+    }
+    if (!le_end) continue;
+    WingFeatures::Tip tip;
+    for (size_t i = 0; i < rim.size(); ++i)
+      for (size_t j = i + 1; j < rim.size(); ++j) tip.chord = std::max(tip.chord, (rim[i] - rim[j]).norm());
+    for (int f = 1; f <= g.num_faces(); ++f)
+      if (root(f) == comp) tip.faces.push_back(f);
+    w.tips.push_back(std::move(tip));
   }
   for (size_t i = 0; i < te_points.size(); ++i)
     if (std::find(w.trailing.begin(), w.trailing.end(), te_curve[i]) != w.trailing.end())
