@@ -51,14 +51,15 @@ TopoDS_Shape blunt_wing() {
 
 struct Across {
   int stations = 0, fewest_crossed = 1 << 30;
-  double smallest_angle = 180;
+  double smallest_angle = 180, mean_edge = 0;
 };
 
 // The base's triangles (faces of the run's blunt bases): their smallest
-// angle, and at `n` stations along the span (planes y = const, the base
-// running along y) the fewest triangles one station crosses. A strip of
-// triangles of size w / N across a base w wide has N rows, and a line across
-// a row crosses two of its triangles: 2 N in all.
+// angle and mean edge, and at `n` stations along the span (planes y =
+// const, the base running along y) the fewest triangles one station
+// crosses. A strip of triangles of size w / N across a base w wide has N
+// rows; a line across a row crosses two of its triangles, one where it
+// passes through a node between rows: 2 N - 1 at least.
 Across across_base(const RunResult& r, int n) {
   const SurfaceMesh& m = r.mesh;
   std::set<int> faces;
@@ -71,7 +72,10 @@ Across across_base(const RunResult& r, int n) {
   double y0 = HUGE_VAL, y1 = -HUGE_VAL;
   for (const auto& t : tris)
     for (int v : t) y0 = std::min(y0, m.xyz[v].y()), y1 = std::max(y1, m.xyz[v].y());
-  for (const auto& t : tris) a.smallest_angle = std::min(a.smallest_angle, min_angle_deg(m.xyz[t[0]], m.xyz[t[1]], m.xyz[t[2]]));
+  for (const auto& t : tris) {
+    a.smallest_angle = std::min(a.smallest_angle, min_angle_deg(m.xyz[t[0]], m.xyz[t[1]], m.xyz[t[2]]));
+    for (int k = 0; k < 3; ++k) a.mean_edge += (m.xyz[t[k]] - m.xyz[t[(k + 1) % 3]]).norm() / (3.0 * tris.size());
+  }
   for (int i = 1; i <= n; ++i) {
     const double y = y0 + (y1 - y0) * i / (n + 1);
     int crossed = 0;
@@ -111,8 +115,8 @@ TEST_CASE("OpenVSP's thick-trailing-edge wing with --aero --te-cells 4: at least
   // no thin triangle (measured across one face alone, from a crease to the
   // middle seam the mesh crosses, it set none: slivers spanned the base).
   const auto plain = test::run_until(o);
-  const Across d = across_base(*plain, 9);
-  CHECK(d.fewest_crossed >= 2 * 2);
+  const Across d = across_base(*plain, 40);
+  CHECK(d.fewest_crossed >= 2 * 2 - 1);
   CHECK(d.smallest_angle >= 12);
 
   o.sizing.le_spacing = o.sizing.te_spacing = SizingParams::kAeroSpacing;
@@ -121,9 +125,9 @@ TEST_CASE("OpenVSP's thick-trailing-edge wing with --aero --te-cells 4: at least
   REQUIRE(r->mesh.failures.empty());
   CHECK(r->report.quality.boundary_edges == 0);
   CHECK(r->report.quality.self_intersections == 0);
-  const Across a = across_base(*r, 9);
+  const Across a = across_base(*r, 40);
   INFO("fewest triangles crossed " << a.fewest_crossed << ", smallest angle " << a.smallest_angle);
-  CHECK(a.fewest_crossed >= 2 * 4);
+  CHECK(a.fewest_crossed >= 2 * 4 - 1);
   CHECK(a.smallest_angle >= 12);
 }
 
@@ -145,14 +149,16 @@ TEST_CASE("a wing built with a 1%-thick blunt base: --te-cells elements across i
     const auto r = test::run_model(model, o);
     REQUIRE(r->mesh.failures.empty());
     test::require_valid_closed(*r->model, r->mesh, r->report.quality, r->model->info().diagonal());
-    const Across a = across_base(*r, 9);
-    INFO(cells << " cells: fewest triangles crossed " << a.fewest_crossed << ", smallest angle " << a.smallest_angle);
-    CHECK(a.stations == 9);
-    CHECK(a.fewest_crossed >= 2 * cells);
+    const Across a = across_base(*r, 40);
+    INFO(cells << " cells: fewest triangles crossed " << a.fewest_crossed << ", smallest angle " << a.smallest_angle
+                << ", mean edge " << a.mean_edge);
+    CHECK(a.stations == 40);
+    CHECK(a.fewest_crossed >= 2 * cells - 1);
     CHECK(a.smallest_angle >= 12);
+    CHECK(a.mean_edge == Approx(0.01 / cells).epsilon(0.15));  // the base is 0.01 wide
   }
   // Off by default: the base gets the proximity sizes (mu_d = 2 across it).
   o.sizing.te_cells = 0;
   const auto r = test::run_model(model, o);
-  CHECK(across_base(*r, 9).fewest_crossed < 2 * 4);
+  CHECK(across_base(*r, 40).fewest_crossed < 2 * 4 - 1);
 }
