@@ -12,6 +12,7 @@ namespace {
 constexpr int kSamples = 64;            // points per curve the chords are measured to
 constexpr double kAcross = 0.7;         // |cos| between a leading edge and the way to its trailing edge
 constexpr double kRadiusOverChord = 0.1;  // a leading edge's radius of curvature is under this share of its chord
+constexpr double kLengthOverChord = 0.02;  // and its length at least this share
 
 struct Use {
   int face, side;
@@ -210,7 +211,8 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
       const Vec3 to = te_points[i] - x;
       const double chord = to.norm();
       const Vec3 tangent = g.curve_tangent(c, at);
-      if (!(chord > 0) || !(tangent.norm() > 0) || std::abs(tangent.normalized().dot(to / chord)) > kAcross)
+      if (!(chord > 0) || !(tangent.norm() > 0) || std::abs(tangent.normalized().dot(to / chord)) > kAcross ||
+          g.curve_length(c) < kLengthOverChord * chord)
         return false;
       for (const Use& side : u) {
         double curvature = 0;

@@ -8,8 +8,10 @@
 // that also holds a trailing edge, running across the direction to that
 // trailing edge (not along it), where the surface is curved far more than
 // the chord: radius of curvature under a tenth of the distance to the
-// trailing edge. The chord at a point of one is its distance to the nearest
-// point of the other kind on the same composite face.
+// trailing edge, and no shorter than 2% of it (a sliver of a curve near a
+// sharp edge is no wing's leading edge). The chord at a point of one is its
+// distance to the nearest point of the other kind on the same composite
+// face.
 //
 // A blunt trailing edge is a base: a composite face that is a long narrow
 // strip between two chains of feature curves (its creases with the upper and
