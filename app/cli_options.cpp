@@ -51,8 +51,10 @@ void add_run_options(CLI::App& app, RunCommandLine& cl) {
   app.add_flag("!--no-union", cl.options.load.unite,
                "mesh each component where it lies: no repair of open components, no union of the closed ones");
   app.add_option("--union-seconds", cl.options.load.union_seconds,
-                 "wall-time budget of the union of components (default 1.5 s per component, 4 to 8 s, repair included; with a far field or symmetry plane 4 s per component, at least 12); an attempt "
-                 "past it is abandoned and the components it leaves out are named (exit 3)")
+                 "work budget of the union of components in CPU seconds, so a loaded machine takes the same routes (default "
+                 "1.5 s per component, 4 to 8 s, repair included; with a far field or symmetry plane 4 s per component, "
+                 "at least 12; stopped all the same at 3 times it in wall time); an attempt past it is abandoned and the "
+                 "components it leaves out are named (exit 3)")
       ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--mesh-union", cl.mesh_union,
                  "unite these components (numbers as --info lists them, comma-separated, or 'all') as meshes: their "

@@ -54,6 +54,30 @@ class ThreadClock {
 // 2-core machine runs about 3 times slower).
 constexpr double kWallPerWork = 3.0;
 
+// The preparation's budget in work: CPU seconds of the thread that made it
+// (the one that runs the preparation), plus the work done for it elsewhere
+// that every run does alike (add): the fuses in child processes, the
+// repair's sewing trials on other threads (not those abandoned when another
+// closed first: how far they got depends on timing). So which route each
+// component takes depends on the work done, not on how loaded the machine
+// is nor on the thread count (a wall-clock budget sent a component down
+// another route, and gave another mesh, when a busy machine slowed the
+// repair before it). Passed all the same after kWallPerWork times the
+// budget in wall time.
+class WorkBudget {
+ public:
+  explicit WorkBudget(double seconds) : budget_(std::max(0.0, seconds)), start_(clock_.now()), wall_(kWallPerWork * budget_) {}
+  double spent() const { return clock_.now() - start_ + added_; }
+  double remaining() const { return passed() ? 0.0 : std::max(0.0, budget_ - spent()); }
+  bool passed() const { return spent() >= budget_ || wall_.passed(); }
+  void add(double seconds) { added_ += std::max(0.0, seconds); }
+
+ private:
+  ThreadClock clock_;
+  double budget_, start_, added_ = 0;
+  Deadline wall_;
+};
+
 // Says "stop" to the algorithm it is passed to once it has worked `seconds`
 // (CPU time of the thread that calls it, so that it does the same work, and
 // comes to the same result, on an idle machine and on a loaded one; stopped

@@ -18,7 +18,7 @@ namespace sizemesh {
 namespace detail {
 
 TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
-                            double tol, const Deadline& deadline, const Follow& follow, Preparation& info) {
+                            double tol, WorkBudget& deadline, const Follow& follow, Preparation& info) {
   // The bodies are one argument: the fuse intersects only shapes of
   // different arguments, so bodies already united (or left apart for the
   // mesh-level union) are not intersected with each other again.
@@ -53,6 +53,7 @@ TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::
     out.shape = fuse.Shape();
     return out;
   });
+  deadline.add(step.worked);
   if (step.shape.IsNull()) {
     info.fallback = step.failure;
     return {};

@@ -13,8 +13,9 @@ namespace sizemesh::detail {
 // where a sheet meets a body or another sheet is shared by the faces on both
 // sides, and sheet pieces inside a body (or lying on its surface) are
 // dropped. Returns the kept faces as a compound, oriented as in the result,
-// or a null shape when the fuse fails.
+// or a null shape when the fuse fails. Within what is left of `deadline`,
+// whose work the fuse adds to.
 TopoDS_Shape imprint_sheets(const std::vector<TopoDS_Shape>& bodies, const std::vector<TopoDS_Shape>& sheets,
-                            double tol, const Deadline& deadline, const Follow& follow, Preparation& info);
+                            double tol, WorkBudget& deadline, const Follow& follow, Preparation& info);
 
 }  // namespace sizemesh::detail

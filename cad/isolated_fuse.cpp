@@ -24,7 +24,7 @@ bool write_step(const std::string& path, const FuseStep& s, const TopTools_Index
   std::ofstream out(path, std::ios::binary);
   TopTools_IndexedMapOfShape result;
   if (!s.shape.IsNull()) TopExp::MapShapes(s.shape, TopAbs_FACE, result);
-  out << s.failure << "\n" << s.out_of_time << "\n" << s.pocket_faces << " " << s.pieces.size() << "\n";
+  out << s.failure << "\n" << s.out_of_time << "\n" << s.worked << " " << s.pocket_faces << " " << s.pieces.size() << "\n";
   for (const auto& [from, to] : s.pieces) out << inputs.FindIndex(from) << " " << result.FindIndex(to) << "\n";
   out << (s.shape.IsNull() ? 0 : 1) << "\n";
   if (!s.shape.IsNull()) BinTools::Write(s.shape, out);
@@ -37,7 +37,7 @@ FuseStep read_step(const std::string& path, const TopTools_IndexedMapOfShape& in
   std::getline(in, s.failure);
   std::getline(in, s.out_of_time);
   size_t n = 0;
-  in >> s.pocket_faces >> n;
+  in >> s.worked >> s.pocket_faces >> n;
   std::vector<std::pair<int, int>> pairs(n);
   for (auto& [i, j] : pairs) in >> i >> j;
   int has_shape = 0;
@@ -71,10 +71,16 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
   TopTools_IndexedMapOfShape inputs;
   for (const auto& p : parts) TopExp::MapShapes(p, TopAbs_FACE, inputs);
   const std::string path = child_result_path();
+  // The work of `here`, on the thread that runs it.
+  auto timed = [&](bool parallel) {
+    const ThreadClock clock;
+    const double start = clock.now();
+    FuseStep s = here(parallel);
+    s.worked = clock.now() - start;
+    return s;
+  };
   const ChildOutcome outcome = run_in_child(
-      [&](const std::string& file, bool threads) {
-        return write_step(file, here(threads && kSerialPool), inputs);
-      },
+      [&](const std::string& file, bool threads) { return write_step(file, timed(threads && kSerialPool), inputs); },
       kWallPerWork * seconds + 1.0, path);
   FuseStep out;
   switch (outcome) {
@@ -89,6 +95,7 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
     case ChildOutcome::TimedOut:
       out.out_of_time = "did not end within its time and was stopped";
       out.failure = "the general fuse " + out.out_of_time;
+      out.worked = seconds;  // all of it
       break;
     case ChildOutcome::Failed: out.failure = "the general fuse crashed"; break;
     case ChildOutcome::NoChild: out = here(true); break;

@@ -33,7 +33,7 @@ struct LoadOptions {
   double sewing_tolerance_rel = 1e-5;  // sewing tolerance / bounding-box diagonal
   bool unite = true;                // repair components and fuse the closed ones (cad/prepare.h)
   FlowDomainOptions domain;
-  double union_seconds = 0;         // the union's wall-time budget; 0: union_budget's default
+  double union_seconds = 0;         // the union's work budget (CPU seconds, cad/deadline.h); 0: union_budget's default
   ProgressSink progress;            // told which component is being united
   bool describe_only = false;       // repair but no union (what --info needs to describe the file)
   // Components (1-based, as --info numbers them) united as meshes without a
@@ -158,7 +158,7 @@ CadFile read_cad(const std::string& path, const LoadOptions& options = {});
 // per-entity data.
 Model prepare_model(const CadFile& cad, const LoadOptions& options = {});
 
-// The union's wall-time budget for a file: options.union_seconds, or by
+// The union's work budget (CPU seconds, cad/deadline.h) for a file: options.union_seconds, or by
 // default 1.5 s per component after sewing, 4 to 8 s (the union of meshes
 // takes what it leaves); inside a flow domain 4 s per component, at least
 // 12 s. An attempt past it is abandoned for the next route.

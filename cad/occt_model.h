@@ -122,6 +122,7 @@ struct FuseStep {
   std::string failure;
   std::string out_of_time;  // when it was stopped for time, how ("did not end within 12.0 s"); else empty
   int pocket_faces = 0;     // faces of enclosed air pockets dropped
+  double worked = 0;  // CPU seconds of the child's thread that ran it (0 when it ran on this one, whose clock has it)
 };
 
 // cad/isolated_fuse.cpp: `here(parallel)` (a fuse of `parts`, budgeted
@@ -133,17 +134,17 @@ struct FuseStep {
 FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
                        const std::function<FuseStep(bool parallel)>& here);
 
-class Deadline;
+class WorkBudget;
 // cad/unite.cpp: the union of closed `solids` (each of info.components
 // [component[i]]) all at once, or else one at a time, grouped by
 // overlapping boxes, each step checked and retried (fuzzy, healed) within
-// `deadline`; when `meshes_take_over` (the union of meshes unites what is
+// `deadline`, a budget of work (cad/deadline.h; each fuse's adds to it); when `meshes_take_over` (the union of meshes unites what is
 // left) and the union of all at once ran out of its time, none is tried one
 // at a time: such a fuse takes seconds a pair. Returns a compound
 // of the united groups and of the solids left out; sets each component's
 // route, info.not_united, info.solids_fused and info.fused.
 TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::vector<int>& component, double tol,
-                          const Deadline& deadline, bool meshes_take_over, const Follow& follow,
+                          WorkBudget& deadline, bool meshes_take_over, const Follow& follow,
                           const ProgressSink& progress, Preparation& info);
 
 // The coordinate planes through 0 that bound the model's box (within

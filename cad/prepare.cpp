@@ -58,7 +58,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
   for (int i = 1; i <= original.Extent(); ++i) out.source.Bind(original(i), i);
   const std::vector<TopoDS_Shape> parts = components_of(sewn);
   info.seconds_budget = default_budget(options, parts.size());
-  const Deadline deadline(info.seconds_budget);
+  WorkBudget deadline(info.seconds_budget);
   for (const auto& s : parts) {
     info.components.push_back(describe(s, area));
     for (const auto& f : faces_of(s)) info.components.back().face_ids.push_back(original.FindIndex(f));
@@ -153,6 +153,7 @@ PreparedShape prepare_shape(const TopoDS_Shape& sewn, const TopTools_IndexedMapO
         info.faces_split_at_folds += folds;
       }
       r = repair_component(faces, tol, diagonal_of(c), half, options.domain.symmetry_axis);
+      deadline.add(r.helper_work);
       for (const auto& [f, piece] : r.split) follow(f, piece);
       for (const auto& f : r.kept) follow(f, r.sewn.after(f));
     }

@@ -21,6 +21,7 @@
 #include <tbb/task_arena.h>
 
 #include "cad/coincident_faces.h"
+#include "cad/deadline.h"
 #include "cad/inside_solids.h"
 #include "cad/occt_model.h"  // face_area_exact
 #include "core/off_thread.h"
@@ -123,6 +124,12 @@ int drop_coincident(const FaceList& faces, const Coincident& pairs, double t, Fa
 Repair repair_component(const FaceList& read, double tol, double component_diagonal, const HalfModelPlanes& half,
                         int cap_axis) {
   Repair r;
+  // No closed component, with the work its trials took.
+  const auto none = [&r] {
+    Repair failed;
+    failed.helper_work = r.helper_work;
+    return failed;
+  };
   const FaceList faces = split_pinched(read, tol, r.split);
   const auto pairs = coincident_pairs(faces, tol);
   // A looser sewing may close it alone (a sewing ladder up to 1e-3 of the
@@ -152,12 +159,16 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     return r;
   };
   std::vector<Rung> climbed(rungs.size());
+  std::vector<double> rung_work(rungs.size(), 0.0);  // CPU seconds of each later rung
   const auto later_rungs = [&] {
     off_this_thread(rungs.size() - 1, [&](size_t j) {
+      const ThreadClock clock;
+      const double start = clock.now();
       BRepBuilderAPI_Copy copy(compound_of(faces));
       FaceList own;
       for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
       climbed[j + 1] = climb(rungs[j + 1], own, &first_closes);
+      rung_work[j + 1] = clock.now() - start;
     });
   };
   const auto first_rung = [&] {
@@ -186,6 +197,10 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     first_rung();
     later_rungs();
   }
+  // The later rungs' work counts when they ran to the end (the first did
+  // not close): abandoned ones got as far as timing let them.
+  if (!climbed[0].closes)
+    for (double w : rung_work) r.helper_work += w;
   for (size_t i = 0; i < rungs.size(); ++i) {
     if (!climbed[i].closes) continue;
     Rung c = i == 0 ? climbed[0] : climb(rungs[i], faces, nullptr);
@@ -218,7 +233,16 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
       double volume = -1;    // of the closed result, when it closes
     };
     std::vector<Trial> trials(options.size());
+    std::vector<double> trial_work(options.size(), 0.0);
     off_this_thread(options.size(), [&](size_t c) {
+      const ThreadClock clock;
+      const double start = clock.now();
+      struct Timed {
+        const ThreadClock& clock;
+        double start;
+        double& out;
+        ~Timed() { out = clock.now() - start; }
+      } timed{clock, start, trial_work[c]};
       double out = 0;
       for (const auto& f : options[c]) out += face_area_exact(f);
       FaceList trial;
@@ -234,6 +258,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
         if (!solids.empty()) trials[c].volume = volume_of(solids);
       }
     });
+    for (double w : trial_work) r.helper_work += w;
     int best = -1;
     for (size_t c = 0; c < options.size(); ++c) {
       const Trial& t = trials[c];
@@ -278,9 +303,9 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   // the faces taken out inside it from those outside, and kept open.
   std::vector<TopoDS_Shape> solids;
   if (now.free_curves != 0) {
-    if (r.half_model_axis < 0) return {};
+    if (r.half_model_axis < 0) return none();
     const Sewn capped = sew(joined(current, planar_caps(now.shape, tol, half, r.half_model_axis).faces), tol);
-    if (capped.free_curves != 0) return {};
+    if (capped.free_curves != 0) return none();
     solids = solids_of(capped.shape);
     r.half_open = now.shape;
   } else {
@@ -288,7 +313,7 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     r.closed = now.shape;
   }
   // A cap lying on a face (a planform plane and the cap over its rim) bounds no volume.
-  if (solids.empty() || volume_of(solids) < 1e-6 * std::pow(component_diagonal, 3)) return {};
+  if (solids.empty() || volume_of(solids) < 1e-6 * std::pow(component_diagonal, 3)) return none();
   const Solids inside(solids, tol);
   for (const auto& f : removed) {
     if (inside.hold(f)) ++r.internal;

@@ -34,6 +34,9 @@ struct Repair {
   std::vector<std::pair<TopoDS_Face, TopoDS_Face>> split;  // (face read, piece) of faces split at a slit
   int duplicates = 0, internal = 0, caps = 0;
   int half_model_axis = -1;  // the half-model plane its free loops lie on
+  // CPU seconds of the sewing trials run on other threads whose results were
+  // used (cad/deadline.h's WorkBudget counts them).
+  double helper_work = 0;
 };
 
 // The repair of the faces `read` of one component (`component_diagonal`: the

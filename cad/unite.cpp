@@ -9,7 +9,7 @@
 // again with a fuzzy value, then on the component healed by ShapeFix; one
 // that still fails leaves that component out of the union, named in the
 // report, and the others go on. Every attempt runs under the preparation's
-// deadline: past it, the algorithm is told to stop.
+// budget of work (cad/deadline.h): past it, the algorithm is told to stop.
 #include <BOPAlgo_CellsBuilder.hxx>
 #include <BRep_Builder.hxx>
 #include <BRepBndLib.hxx>
@@ -213,7 +213,7 @@ Bnd_Box box_of(const TopoDS_Shape& s, double gap) {
 }  // namespace
 
 TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::vector<int>& component, double tol,
-                          const Deadline& deadline, bool meshes_take_over, const Follow& follow,
+                          WorkBudget& deadline, bool meshes_take_over, const Follow& follow,
                           const ProgressSink& progress, Preparation& info) {
   // Largest first: the fuselage, then what is attached to it.
   std::vector<Bnd_Box> box(solids.size());
@@ -232,8 +232,9 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
   // takes what is left.
   if (progress) progress("uniting " + std::to_string(solids.size()) + " components at once");
   const double allotted = 0.75 * deadline.remaining();
-  const Deadline all_at_once(allotted);
+  const double before = deadline.spent();
   FuseStep all = fuse(solids, 0.0, allotted);
+  deadline.add(all.worked);
   if (!all.shape.IsNull()) {
     for (const auto& [from, to] : all.pieces) follow(from, to);
     for (int k : component) info.components[k].route = "B-rep union";
@@ -242,7 +243,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
     info.fused = true;
     return all.shape;
   }
-  if (meshes_take_over && (!all.out_of_time.empty() || all_at_once.remaining() <= 0.05 * allotted)) {
+  if (meshes_take_over && (!all.out_of_time.empty() || deadline.spent() - before >= 0.95 * allotted)) {
     std::ostringstream why;
     why << "not united: the B-rep union of all " << solids.size() << " components ";
     if (all.out_of_time.empty())
@@ -294,6 +295,7 @@ TopoDS_Shape unite_solids(const std::vector<TopoDS_Shape>& solids, const std::ve
           const TopoDS_Shape part = r.heal ? healed(solids[k], tol, healing) : solids[k];
           if (part.IsNull()) continue;
           step = fuse({group, part}, r.fuzzy, std::min(budget, deadline.remaining()));
+          deadline.add(step.worked);
           if (!step.shape.IsNull()) {
             c.route = r.name;
             break;

@@ -1,7 +1,10 @@
 // Aircraft united at mesh level are one closed surface: nothing crossing or turned over, no avoidable thin triangle.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/cli_runner.h"
@@ -254,4 +257,37 @@ TEST_CASE("the manta united at mesh level: faces meshed again on either side of 
   CHECK(j["mesh_union"]["faces_kept"] == 0);
   // 19 before the thin triangles along the junctions were collapsed, flipped or pinched.
   CHECK(j["mesh"]["avoidable_below_12deg"] <= 3);
+}
+
+TEST_CASE("the union takes the same routes, and gives the same mesh, with 1 thread, with 2, and on a loaded machine", "[models]") {
+  // The 777 (one-piece B-splines): four components united as B-reps, one at
+  // mesh level, a planform plane left out. Its budget is work (cad/deadline.h):
+  // a budget in wall time sent components down other routes when the
+  // machine was busy (91,558 triangles instead of 104,200).
+  const test::TempDir dir("union_routes");
+  const std::string model = test::model_path("b777_nosplit_openvsp.stp");
+  auto routes = [](const nlohmann::json& j) {
+    std::vector<std::string> out;
+    for (const auto& c : j["preparation"]["components"]) out.push_back(c["route"]);
+    return out;
+  };
+  const auto one = test::run_with_report(model + " -q --threads 1 -o " + (dir / "one.stl"), dir / "one.json");
+  // Two threads with two more busy threads of this process beside them.
+  std::atomic<bool> busy{true};
+  std::vector<std::thread> load;
+  for (int i = 0; i < 2; ++i)
+    load.emplace_back([&busy] {
+      volatile double x = 0;
+      while (busy) x = x + 1;
+    });
+  const auto two = test::run_with_report(model + " -q --threads 2 -o " + (dir / "two.stl"), dir / "two.json");
+  busy = false;
+  for (auto& t : load) t.join();
+  const std::vector<std::string> r1 = routes(one), r2 = routes(two);
+  CHECK(r1 == r2);
+  CHECK(std::count(r1.begin(), r1.end(), "B-rep union") == 4);
+  CHECK(one["mesh"]["triangles"] == two["mesh"]["triangles"]);
+  const std::string a = test::slurp(dir / "one.stl"), b = test::slurp(dir / "two.stl");
+  CHECK(a.size() > 84);
+  CHECK(a == b);
 }
