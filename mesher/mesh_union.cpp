@@ -186,6 +186,12 @@ MeshUnionResult unite_meshes(SurfaceMesh& s, const Geometry& g, const SizeField&
     for (EI e : base->m.edges())
       if (cut_now[e]) base->cut[e] = true;
     base->m.remove_property_map(cut_now);
+    // The corefinement's output is the same from run to run but not in the
+    // same order (its new vertices and faces come in an order of its own
+    // bookkeeping): the next piece's gap closing and corefinement, and the
+    // band re-mesh, follow the order they find. Renumbered by the geometry
+    // alone, each step starts from the same mesh every run.
+    renumber(*base);
   };
   for (size_t i = 0; i < pieces.size(); ++i) take(i, false);
   for (size_t i : waiting) take(i, true);
