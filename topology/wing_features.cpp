@@ -119,15 +119,26 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
   // continues into the next curve at a point where they leave it opposite
   // ways), narrow against their length. Their creases are trailing-edge
   // candidates of the skins across them.
+  // The composite across curve c (two faces) from composite `comp`.
+  auto across = [&](int c, int comp) {
+    return root(uses[c][0].face) == comp ? root(uses[c][1].face) : root(uses[c][0].face);
+  };
+  // The B-rep faces of composite `comp`, in id order.
+  auto faces_of = [&](int comp) {
+    std::vector<int> out;
+    for (int f = 1; f <= g.num_faces(); ++f)
+      if (root(f) == comp) out.push_back(f);
+    return out;
+  };
   struct Candidate {
     int comp;
     std::vector<int> chain[2];
-    double width;
+    std::vector<std::vector<Vec3>> lines[2];  // each chain's curves as polylines
+    double width, width_min, width_max;       // median, least and most over both chains' points
   };
   std::vector<Candidate> candidates;
   {
     std::map<int, std::vector<int>> creases;  // composite -> its crease curves
-    std::map<int, int> skin_of;               // crease -> the composite across it
     for (const auto& [c, u] : uses) {
       if (u.size() != 2 || kind(c) != CurveKind::Angle || g.curve_degenerated(c)) continue;
       if (!(turn(c) >= WingFeatures::kBaseTurnDeg) || turn(c) >= WingFeatures::kTrailingTurnDeg) continue;
@@ -167,30 +178,29 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
       if (chains.size() < 2) continue;
       std::partial_sort(chains.begin(), chains.begin() + 2, chains.end(),
                         [](const auto& a, const auto& b) { return a.first > b.first; });
-      Candidate cand{comp, {chains[0].second, chains[1].second}, 0};
-      std::vector<std::vector<Vec3>> lines[2];
-      double length[2] = {0, 0};
+      Candidate cand{comp, {chains[0].second, chains[1].second}, {}, 0, 0, 0};
+      const double length[2] = {chains[0].first, chains[1].first};
       for (int k = 0; k < 2; ++k)
-        for (int c : cand.chain[k]) lines[k].push_back(polyline(g, c)), length[k] += g.curve_length(c);
+        for (int c : cand.chain[k]) cand.lines[k].push_back(polyline(g, c));
       std::vector<double> widths;
       for (int k = 0; k < 2; ++k)
-        for (const auto& line : lines[k])
-          for (const Vec3& x : line) widths.push_back(to_chain(lines[1 - k], x));
+        for (const auto& line : cand.lines[k])
+          for (const Vec3& x : line) widths.push_back(to_chain(cand.lines[1 - k], x));
+      const auto [lo, hi] = std::minmax_element(widths.begin(), widths.end());
+      cand.width_min = *lo, cand.width_max = *hi;
       std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
       cand.width = widths[widths.size() / 2];
       // A strip: long against its width, and no more area than the width
       // times its length (twice, for a strip that widens along the span).
       double area = 0;
-      for (int f = 1; f <= g.num_faces(); ++f)
-        if (root(f) == comp) area += g.face_area(f);
+      for (int f : faces_of(comp)) area += g.face_area(f);
       if (!(cand.width > 0) || std::min(length[0], length[1]) < WingFeatures::kBaseAspect * cand.width ||
           area > cand.width * (length[0] + length[1]))
         continue;
       for (int k = 0; k < 2; ++k)
-        for (int c : cand.chain[k]) {
-          const int skin = root(uses[c][0].face) == comp ? root(uses[c][1].face) : root(uses[c][0].face);
-          for (const Vec3& x : samples(g, c)) te_points.push_back(x), te_comp.push_back(skin), te_curve.push_back(c);
-        }
+        for (int c : cand.chain[k])
+          for (const Vec3& x : samples(g, c))
+            te_points.push_back(x), te_comp.push_back(across(c, comp)), te_curve.push_back(c);
       candidates.push_back(std::move(cand));
     }
   }
@@ -243,39 +253,30 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
   // The bases whose creases all border skins with a leading edge, no wider
   // than kBaseOverChord of the chord there: their creases are trailing edges.
   const std::set<int> winged(w.leading_composite.begin(), w.leading_composite.end());
-  for (const Candidate& cand : candidates) {
+  for (Candidate& cand : candidates) {
     bool ok = true;
     std::vector<double> chords;
-    WingFeatures::Base base;
     for (int k = 0; k < 2 && ok; ++k)
       for (int c : cand.chain[k]) {
-        const int skin = root(uses[c][0].face) == cand.comp ? root(uses[c][1].face) : root(uses[c][0].face);
+        const int skin = across(c, cand.comp);
         if (!winged.count(skin)) {
           ok = false;
           break;
         }
-        base.side[k].push_back(polyline(g, c));
         for (const Vec3& x : samples(g, c)) chords.push_back(w.chord_at(x, skin, false));
       }
     if (!ok) continue;
     std::nth_element(chords.begin(), chords.begin() + chords.size() / 2, chords.end());
     if (!(cand.width <= WingFeatures::kBaseOverChord * chords[chords.size() / 2])) continue;
-    for (int f = 1; f <= g.num_faces(); ++f)
-      if (root(f) == cand.comp) base.faces.push_back(f);
-    double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    for (int k = 0; k < 2; ++k)
-      for (const auto& line : base.side[k])
-        for (const Vec3& x : line) {
-          const double width = to_chain(base.side[1 - k], x);
-          lo = std::min(lo, width), hi = std::max(hi, width);
-        }
-    base.width_min = lo, base.width_max = hi;
+    WingFeatures::Base base;
+    base.faces = faces_of(cand.comp);
+    for (int k = 0; k < 2; ++k) base.side[k] = std::move(cand.lines[k]);
+    base.width_min = cand.width_min, base.width_max = cand.width_max;
     w.bases.push_back(std::move(base));
     for (int k = 0; k < 2; ++k)
       for (int c : cand.chain[k]) {
-        const int skin = root(uses[c][0].face) == cand.comp ? root(uses[c][1].face) : root(uses[c][0].face);
         w.trailing.push_back(c);
-        w.trailing_curve_composite.push_back(skin);
+        w.trailing_curve_composite.push_back(across(c, cand.comp));
         w.trailing_length += g.curve_length(c);
       }
   }
@@ -284,7 +285,7 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
   for (const WingFeatures::Base& b : w.bases) base_comps.insert(root(b.faces[0]));
   for (int c : w.leading) le_ends.insert(g.curve_start_point(c)), le_ends.insert(g.curve_end_point(c));
   std::map<int, std::vector<int>> border;  // composite -> curves on its border
-  std::map<int, bool> closed_by_skins;
+  std::set<int> open;                      // composites with a border curve to anything else
   for (const auto& [c, u] : uses) {
     if (g.curve_degenerated(c)) continue;
     std::set<int> comps;
@@ -299,12 +300,11 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
       for (const Use& other : u)
         if (root(other.face) != comp)
           skins = skins && (winged.count(root(other.face)) || base_comps.count(root(other.face)));
-      if (!closed_by_skins.count(comp)) closed_by_skins[comp] = true;
-      closed_by_skins[comp] = closed_by_skins[comp] && skins;
+      if (!skins) open.insert(comp);
     }
   }
   for (const auto& [comp, curves] : border) {
-    if (winged.count(comp) || base_comps.count(comp) || !closed_by_skins[comp]) continue;
+    if (winged.count(comp) || base_comps.count(comp) || open.count(comp)) continue;
     bool le_end = false;
     std::vector<Vec3> rim;
     for (int c : curves) {
@@ -315,8 +315,7 @@ WingFeatures find_wing_features(const Geometry& g, const Topology& t) {
     WingFeatures::Tip tip;
     for (size_t i = 0; i < rim.size(); ++i)
       for (size_t j = i + 1; j < rim.size(); ++j) tip.chord = std::max(tip.chord, (rim[i] - rim[j]).norm());
-    for (int f = 1; f <= g.num_faces(); ++f)
-      if (root(f) == comp) tip.faces.push_back(f);
+    tip.faces = faces_of(comp);
     w.tips.push_back(std::move(tip));
   }
   for (size_t i = 0; i < te_points.size(); ++i)
