@@ -49,6 +49,20 @@ class ThreadClock {
   bool valid_ = false;
 };
 
+// f(), its CPU seconds on this thread written to `worked` (returns what f returns).
+template <class F>
+auto timed(double& worked, const F& f) {
+  const ThreadClock clock;
+  const double start = clock.now();
+  struct Stop {
+    const ThreadClock& clock;
+    double start;
+    double& out;
+    ~Stop() { out = clock.now() - start; }
+  } stop{clock, start, worked};
+  return f();
+}
+
 // How many times its budget in wall time an algorithm budgeted in work may
 // take on a loaded machine before it is stopped all the same (a loaded
 // 2-core machine runs about 3 times slower).

@@ -71,16 +71,14 @@ FuseStep fuse_in_child(const std::vector<TopoDS_Shape>& parts, double seconds,
   TopTools_IndexedMapOfShape inputs;
   for (const auto& p : parts) TopExp::MapShapes(p, TopAbs_FACE, inputs);
   const std::string path = child_result_path();
-  // The work of `here`, on the thread that runs it.
-  auto timed = [&](bool parallel) {
-    const ThreadClock clock;
-    const double start = clock.now();
-    FuseStep s = here(parallel);
-    s.worked = clock.now() - start;
-    return s;
-  };
+  // In the child, the work of `here` on the thread that runs it goes back with its result.
   const ChildOutcome outcome = run_in_child(
-      [&](const std::string& file, bool threads) { return write_step(file, timed(threads && kSerialPool), inputs); },
+      [&](const std::string& file, bool threads) {
+        double worked = 0;
+        FuseStep s = timed(worked, [&] { return here(threads && kSerialPool); });
+        s.worked = worked;
+        return write_step(file, s, inputs);
+      },
       kWallPerWork * seconds + 1.0, path);
   FuseStep out;
   switch (outcome) {

@@ -162,13 +162,12 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
   std::vector<double> rung_work(rungs.size(), 0.0);  // CPU seconds of each later rung
   const auto later_rungs = [&] {
     off_this_thread(rungs.size() - 1, [&](size_t j) {
-      const ThreadClock clock;
-      const double start = clock.now();
-      BRepBuilderAPI_Copy copy(compound_of(faces));
-      FaceList own;
-      for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
-      climbed[j + 1] = climb(rungs[j + 1], own, &first_closes);
-      rung_work[j + 1] = clock.now() - start;
+      timed(rung_work[j + 1], [&] {
+        BRepBuilderAPI_Copy copy(compound_of(faces));
+        FaceList own;
+        for (const auto& f : faces) own.push_back(TopoDS::Face(copy.Modified(f).First()));
+        climbed[j + 1] = climb(rungs[j + 1], own, &first_closes);
+      });
     });
   };
   const auto first_rung = [&] {
@@ -235,28 +234,22 @@ Repair repair_component(const FaceList& read, double tol, double component_diago
     std::vector<Trial> trials(options.size());
     std::vector<double> trial_work(options.size(), 0.0);
     off_this_thread(options.size(), [&](size_t c) {
-      const ThreadClock clock;
-      const double start = clock.now();
-      struct Timed {
-        const ThreadClock& clock;
-        double start;
-        double& out;
-        ~Timed() { out = clock.now() - start; }
-      } timed{clock, start, trial_work[c]};
-      double out = 0;
-      for (const auto& f : options[c]) out += face_area_exact(f);
-      FaceList trial;
-      for (const auto& f : current)
-        if (std::none_of(options[c].begin(), options[c].end(), [&](const TopoDS_Face& g) { return g.IsSame(f); }))
-          trial.push_back(f);
-      if (trial.empty() || area_out + out > 0.5 * area_left) return;
-      const Sewn s = sew(faces_of(BRepBuilderAPI_Copy(compound_of(trial)).Shape()), tol);
-      trials[c].faces = std::move(trial);
-      trials[c].free_curves = s.free_curves;
-      if (s.free_curves == 0) {
-        const std::vector<TopoDS_Shape> solids = solids_of(s.shape);
-        if (!solids.empty()) trials[c].volume = volume_of(solids);
-      }
+      timed(trial_work[c], [&] {
+        double out = 0;
+        for (const auto& f : options[c]) out += face_area_exact(f);
+        FaceList trial;
+        for (const auto& f : current)
+          if (std::none_of(options[c].begin(), options[c].end(), [&](const TopoDS_Face& g) { return g.IsSame(f); }))
+            trial.push_back(f);
+        if (trial.empty() || area_out + out > 0.5 * area_left) return;
+        const Sewn s = sew(faces_of(BRepBuilderAPI_Copy(compound_of(trial)).Shape()), tol);
+        trials[c].faces = std::move(trial);
+        trials[c].free_curves = s.free_curves;
+        if (s.free_curves == 0) {
+          const std::vector<TopoDS_Shape> solids = solids_of(s.shape);
+          if (!solids.empty()) trials[c].volume = volume_of(solids);
+        }
+      });
     });
     for (double w : trial_work) r.helper_work += w;
     int best = -1;

@@ -79,8 +79,8 @@ PatchBorder patch_border(const BackgroundMesh& bg, const FacePatch& patch, const
   return out;
 }
 
-// Direction in uv of face `face` at `uv` along the space vector `d` projected
-// on its tangent plane; false where the surface is singular.
+// Direction in uv, at a surface point with derivatives s, of the space
+// vector `d` projected on the tangent plane; false where s is singular.
 bool uv_direction(const SurfaceD1& s, const Vec3& d, Vec2& dir) {
   Eigen::Matrix2d jtj;
   jtj << s.du.dot(s.du), s.du.dot(s.dv), s.du.dot(s.dv), s.dv.dot(s.dv);
@@ -188,7 +188,7 @@ void face_widths(const Geometry& g, const BackgroundMesh& bg, size_t pi, const s
       }
       // Into the composite's next faces when a crossed curve comes first.
       double s_portal = best_s, r = 0;
-      int k = borders[pi].portal.empty() ? -1 : first_portal(pi, o, dir, -1, s_portal, r);
+      int k = first_portal(pi, o, dir, -1, s_portal, r);
       if (k >= 0) {
         best = kNoLimit;
         size_t at = pi;
