@@ -9,12 +9,15 @@
 namespace sizemesh {
 
 void drop_back_to_back(SurfaceMesh& m) {
-  std::map<std::array<int, 3>, std::vector<int>> by_nodes;
+  // Triangles by their sorted nodes, then index: groups of equal keys in key
+  // order, each group in triangle order.
+  using Keyed = std::pair<std::array<int, 3>, int>;
+  std::vector<Keyed> keyed(m.tris.size());
   for (size_t t = 0; t < m.tris.size(); ++t) {
-    std::array<int, 3> key = m.tris[t];
-    std::sort(key.begin(), key.end());
-    by_nodes[key].push_back(static_cast<int>(t));
+    keyed[t] = {m.tris[t], static_cast<int>(t)};
+    std::sort(keyed[t].first.begin(), keyed[t].first.end());
   }
+  std::sort(keyed.begin(), keyed.end());
   // Opposite orientation: b's cyclic order is a's reversed.
   auto opposite = [&](int a, int b) {
     const auto &x = m.tris[a], &y = m.tris[b];
@@ -23,10 +26,13 @@ void drop_back_to_back(SurfaceMesh& m) {
     return false;
   };
   std::vector<char> drop(m.tris.size(), 0);
-  for (const auto& [key, list] : by_nodes)
-    for (size_t i = 0; i < list.size(); ++i)
-      for (size_t j = i + 1; j < list.size() && !drop[list[i]]; ++j)
-        if (!drop[list[j]] && opposite(list[i], list[j])) drop[list[i]] = drop[list[j]] = 1;
+  for (size_t lo = 0, hi = 0; lo < keyed.size(); lo = hi) {
+    while (hi < keyed.size() && keyed[hi].first == keyed[lo].first) ++hi;
+    for (size_t i = lo; i < hi; ++i)
+      for (size_t j = i + 1; j < hi && !drop[keyed[i].second]; ++j)
+        if (!drop[keyed[j].second] && opposite(keyed[i].second, keyed[j].second))
+          drop[keyed[i].second] = drop[keyed[j].second] = 1;
+  }
   size_t kept = 0;
   for (size_t t = 0; t < m.tris.size(); ++t) {
     if (drop[t]) continue;
@@ -42,34 +48,46 @@ void drop_back_to_back(SurfaceMesh& m) {
 }
 
 void flip_shared_inner_edges(SurfaceMesh& m) {
-  // Edge (a < b) -> triangles using it.
-  std::map<std::pair<int, int>, std::vector<int>> uses;
+  // Every side as (edge with a < b, triangle), sorted: the triangles using an
+  // edge are a run, in triangle order. The edges are those of the mesh as it
+  // came; a flip below does not add its new edge.
+  using Edge = std::pair<int, int>;
+  std::vector<std::pair<Edge, int>> sides;
+  sides.reserve(3 * m.tris.size());
   for (size_t t = 0; t < m.tris.size(); ++t)
     for (int k = 0; k < 3; ++k)
-      uses[std::minmax(m.tris[t][k], m.tris[t][(k + 1) % 3])].push_back(static_cast<int>(t));
+      sides.push_back({std::minmax(m.tris[t][k], m.tris[t][(k + 1) % 3]), static_cast<int>(t)});
+  std::sort(sides.begin(), sides.end());
+  const auto used = [&](const Edge& e) {
+    const auto it = std::lower_bound(sides.begin(), sides.end(), std::pair<Edge, int>(e, -1));
+    return it != sides.end() && it->first == e;
+  };
   auto normal = [&](const std::array<int, 3>& t) {
     return (m.xyz[t[1]] - m.xyz[t[0]]).cross(m.xyz[t[2]] - m.xyz[t[0]]);
   };
   int flipped = 0;
-  for (const auto& [e, list] : uses) {
-    if (list.size() != 4) continue;
+  for (size_t lo = 0, hi = 0; lo < sides.size(); lo = hi) {
+    while (hi < sides.size() && sides[hi].first == sides[lo].first) ++hi;
+    if (hi - lo != 4) continue;
+    const Edge e = sides[lo].first;
     // Two faces, two triangles each: flip the edge inside the first face
     // whose quad allows it.
     std::map<int, std::vector<int>> by_face;
-    for (int t : list) by_face[m.tri_face[t]].push_back(t);
+    for (size_t i = lo; i < hi; ++i) by_face[m.tri_face[sides[i].second]].push_back(sides[i].second);
     if (by_face.size() != 2) continue;
     for (auto& [f, pair] : by_face) {
       if (pair.size() != 2) break;
       const int t1 = pair[0], t2 = pair[1];
       // t1 = (a, b, c) with a -> b along the edge; t2 holds b -> a and d.
       int k1 = 0;
-      while (std::pair<int, int>(std::minmax(m.tris[t1][k1], m.tris[t1][(k1 + 1) % 3])) != e) ++k1;
+      while (k1 < 3 && Edge(std::minmax(m.tris[t1][k1], m.tris[t1][(k1 + 1) % 3])) != e) ++k1;
+      if (k1 == 3) break;  // t1 was flipped across another of its edges
       const int a = m.tris[t1][k1], b = m.tris[t1][(k1 + 1) % 3], c = m.tris[t1][(k1 + 2) % 3];
       int k2 = 0;
-      while (m.tris[t2][k2] != b) ++k2;
-      if (m.tris[t2][(k2 + 1) % 3] != a) break;  // not opposite: leave it
+      while (k2 < 3 && m.tris[t2][k2] != b) ++k2;
+      if (k2 == 3 || m.tris[t2][(k2 + 1) % 3] != a) break;  // not opposite: leave it
       const int d = m.tris[t2][(k2 + 2) % 3];
-      if (c == d || uses.count(std::pair<int, int>(std::minmax(c, d)))) break;
+      if (c == d || used(std::minmax(c, d))) break;
       auto uv_of = [&](int t, int n) {
         for (int k = 0; k < 3; ++k)
           if (m.tris[t][k] == n) return m.tri_uv[t][k];
