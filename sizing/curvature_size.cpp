@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace sizemesh {
@@ -63,18 +64,62 @@ double curve_curvature_size(const Geometry& g, int curve, double t, const Sizing
   return std::min(angular_size(k, p.curve_phi_c(curve), p), deviation_size(k, p.deviation));
 }
 
-std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p) {
+CurvatureMemo::Key CurvatureMemo::key(int face, const Vec2& uv) {
+  Key k{face, 0, 0};
+  const double u = uv[0], v = uv[1];
+  std::memcpy(&k.u, &u, sizeof u);
+  std::memcpy(&k.v, &v, sizeof v);
+  return k;
+}
+
+size_t CurvatureMemo::Hash::operator()(const Key& k) const {
+  uint64_t x = k.u * 0x9E3779B97F4A7C15ull ^ (k.v + 0x632BE59BD9B4E019ull + (static_cast<uint64_t>(k.face) << 40));
+  x ^= x >> 31;
+  return static_cast<size_t>(x * 0xBF58476D1CE4E5B9ull);
+}
+
+bool CurvatureMemo::find(int face, const Vec2& uv, double& h) const {
+  const auto it = sizes_.find(key(face, uv));
+  if (it == sizes_.end()) return false;
+  h = it->second;
+  return true;
+}
+
+void CurvatureMemo::add(int face, const Vec2& uv, double h) { sizes_.emplace(key(face, uv), h); }
+
+double CurvatureMemo::face(const Geometry& g, int face, const Vec2& uv, const SizingParams& p) {
+  double h;
+  if (find(face, uv, h)) return h;
+  h = face_curvature_size(g, face, uv, p);
+  add(face, uv, h);
+  return h;
+}
+
+std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p,
+                                    CurvatureMemo* memo) {
   const int nv = bg.num_vertices();
   std::vector<double> h(nv, kNoLimit);
-  // Faces: each vertex at its uv on every face it lies on; the smallest size wins.
+  // Faces: each vertex at its uv on every face it lies on; the smallest size
+  // wins. Each use's size first (looked up in parallel, computed where
+  // missing), then the memo gains the new ones.
+  const int nu = bg.use_start[nv];
+  std::vector<double> at_use(nu);
+  std::vector<char> known(nu, 0);
   tbb::parallel_for(0, nv, [&](int v) {
     double best = kNoLimit;
     for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u) {
       const int f = bg.use_face[u];
-      best = std::min(best, face_curvature_size(g, f, bg.patches[f - 1].uv[bg.use_local[u]], p));
+      const Vec2& uv = bg.patches[f - 1].uv[bg.use_local[u]];
+      known[u] = memo && memo->find(f, uv, at_use[u]);
+      if (!known[u]) at_use[u] = face_curvature_size(g, f, uv, p);
+      best = std::min(best, at_use[u]);
     }
     h[v] = best;
   });
+  if (memo)
+    for (int v = 0; v < nv; ++v)
+      for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u)
+        if (!known[u]) memo->add(bg.use_face[u], bg.patches[bg.use_face[u] - 1].uv[bg.use_local[u]], at_use[u]);
   // Curves: the curve's own curvature at its vertices and at its end points.
   auto curve_at = [&](int c, double t, int v) { h[v] = std::min(h[v], curve_curvature_size(g, c, t, p)); };
   for (int v = 0; v < nv; ++v)

@@ -15,6 +15,8 @@
 //          undefined (poles, apexes, evaluation failures): never 0 or NaN.
 #pragma once
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "background/background_mesh.h"
@@ -25,7 +27,34 @@
 
 namespace sizemesh {
 
-std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p);
+// Face curvature sizes already computed, by face and the exact bits of uv:
+// the background refinement asks them again every round at the vertices,
+// edge midpoints and triangle samples its splits left as they were. A value
+// comes from face_curvature_size alone, so the memo changes no size.
+class CurvatureMemo {
+ public:
+  // face_curvature_size(g, face, uv, p), from the memo when it was asked before.
+  double face(const Geometry& g, int face, const Vec2& uv, const SizingParams& p);
+  // Only a look-up (safe while other threads look up too): false when absent.
+  bool find(int face, const Vec2& uv, double& h) const;
+  void add(int face, const Vec2& uv, double h);
+
+ private:
+  struct Key {
+    int face;
+    uint64_t u, v;
+    bool operator==(const Key& o) const { return face == o.face && u == o.u && v == o.v; }
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const;
+  };
+  static Key key(int face, const Vec2& uv);
+  std::unordered_map<Key, double, Hash> sizes_;
+};
+
+// memo: optional; faces' sizes are taken from it and added to it.
+std::vector<double> curvature_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p,
+                                    CurvatureMemo* memo = nullptr);
 
 // 2 r sin(phi/2) for curvature k (1/length) and phi in degrees; kNoLimit for k <= 0.
 double chord_size(double k, double phi_deg);

@@ -93,13 +93,14 @@ std::vector<double> size_caps(const BackgroundMesh& bg, const SizingParams& p, d
 
 }  // namespace
 
-SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal) {
+SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal,
+                      CurvatureMemo* memo) {
   validate(p, diagonal, g.num_points(), g.num_curves(), g.num_faces());
   SizeMap m;
   m.h_min = p.resolved_h_min(diagonal);
   m.h_max = p.resolved_h_max(diagonal);
   Stopwatch clock;
-  m.h_curvature = curvature_sizes(g, bg, p);
+  m.h_curvature = curvature_sizes(g, bg, p, memo);
   m.t_curvature = clock.lap();
   std::vector<double> h_face(bg.num_vertices(), kNoLimit), h_curve(bg.num_vertices(), kNoLimit);
   if (p.proximity) {

@@ -12,11 +12,14 @@
 
 #include "background/background_mesh.h"
 #include "core/geometry.h"
+#include "sizing/curvature_size.h"
 #include "sizing/params.h"
 #include "sizing/size_map.h"
 
 namespace sizemesh {
 
-SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal);
+// memo: optional, the face curvature sizes asked before (sizing/curvature_size.h).
+SizeMap initial_sizes(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double diagonal,
+                      CurvatureMemo* memo = nullptr);
 
 }  // namespace sizemesh

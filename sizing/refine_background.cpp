@@ -20,7 +20,7 @@ namespace {
 // A split where this is no larger than the ends' sizes would add a vertex
 // that only repeats them (a leading edge at h_min, all along).
 double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, const SizingParams& p, double h_max,
-                               int a, int b) {
+                               int a, int b, CurvatureMemo& memo) {
   double h = source_size(p.sources, 0.5 * (bg.xyz[a] + bg.xyz[b]), h_max, std::log(p.beta));
   for (int ua = bg.use_start[a]; ua < bg.use_start[a + 1]; ++ua)
     for (int ub = bg.use_start[b]; ub < bg.use_start[b + 1]; ++ub) {
@@ -28,7 +28,7 @@ double midpoint_curvature_size(const Geometry& g, const BackgroundMesh& bg, cons
       if (bg.use_face[ub] != f) continue;
       const FacePatch& patch = bg.patches[f - 1];
       const Vec2 mid = 0.5 * (patch.uv[bg.use_local[ua]] + patch.uv[bg.use_local[ub]]);
-      h = std::min(h, face_curvature_size(g, f, mid, p));
+      h = std::min(h, memo.face(g, f, mid, p));
     }
   return h;
 }
@@ -48,12 +48,13 @@ int longest_edge(const BackgroundMesh& bg, int t) {
 void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams& p, double diagonal, SizeMap& m,
                        RefineStats* stats, bool flips) {
   RefineStats s;
+  CurvatureMemo memo;
   s.vertices_before = bg.num_vertices();
   // Delaunay in space first: the tessellation's obtuse triangles would make
   // Eq. 11 lower sizes across their short height (see flip_to_delaunay).
   if (p.refine_background && flips) {
     s.flips = flip_to_delaunay(bg, g);
-    if (s.flips > 0) m = initial_sizes(g, bg, p, diagonal);
+    if (s.flips > 0) m = initial_sizes(g, bg, p, diagonal, &memo);
   }
   for (int round = 0; round < kRefineMaxRounds && p.refine_background; ++round) {
     std::vector<double> h = m.h_initial;
@@ -74,7 +75,7 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
       for (double x : {0.25, 0.5})
         gain = std::max(gain, std::min(cap, lo + m.edge_log_beta[e] * x * l) / (lo + x * (hi - lo)));
       if (!(gain > kRefineGain) && !(m.h_min * kCurvatureMiss < linear)) continue;
-      const double curved = midpoint_curvature_size(g, bg, p, m.h_max, a, b);
+      const double curved = midpoint_curvature_size(g, bg, p, m.h_max, a, b, memo);
       // Room to grow that the curvature there allows, or a curvature the ends miss.
       if ((gain > kRefineGain && curved > kRefineGain * linear) || std::max(curved, m.h_min) * kCurvatureMiss < linear)
         split.push_back(e);
@@ -93,7 +94,7 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
         for (const Vec3& w : kSamples) {
           const Vec2 c = w[0] * patch.uv[lt[0]] + w[1] * patch.uv[lt[1]] + w[2] * patch.uv[lt[2]];
           const double linear = w[0] * hv[0] + w[1] * hv[1] + w[2] * hv[2];
-          double wanted = face_curvature_size(g, patch.face, c, p);
+          double wanted = memo.face(g, patch.face, c, p);
           if (!p.sources.empty()) {
             const Vec3 x = w[0] * bg.xyz[patch.vertex[lt[0]]] + w[1] * bg.xyz[patch.vertex[lt[1]]] +
                            w[2] * bg.xyz[patch.vertex[lt[2]]];
@@ -137,7 +138,7 @@ void refine_background(const Geometry& g, BackgroundMesh& bg, const SizingParams
     if (flips) s.flips += flip_to_delaunay(bg, g);  // the split's new triangles too
     s.rounds = round + 1;
     s.edges_split += n;
-    m = initial_sizes(g, bg, p, diagonal);
+    m = initial_sizes(g, bg, p, diagonal, &memo);
   }
   s.vertices_after = bg.num_vertices();
   if (stats) *stats = s;
