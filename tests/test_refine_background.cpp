@@ -262,3 +262,32 @@ TEST_CASE("Delaunay flips keep the M6's background classified and closed, and it
   CHECK(default_after < 0.95 * default_before);
   CHECK(bounded_after < 0.85 * bounded_before);
 }
+
+TEST_CASE("the curvature memo gives the sizes computed without it, and answers what it was asked before") {
+  Model model = load_model(test::model_path("onera_m6_wing.stp"));
+  BackgroundMesh bg = build_background_mesh(model);
+  const SizingParams p{};
+  refine_background(model, bg, p, model.info().diagonal());
+  CurvatureMemo memo;
+  const std::vector<double> fresh = curvature_sizes(model, bg, p);
+  const std::vector<double> first = curvature_sizes(model, bg, p, &memo);   // fills the memo
+  const std::vector<double> second = curvature_sizes(model, bg, p, &memo);  // answers from it
+  REQUIRE(fresh.size() == static_cast<size_t>(bg.num_vertices()));
+  CHECK(first == fresh);
+  CHECK(second == fresh);
+  int uses = 0, curved = 0;
+  for (int v = 0; v < bg.num_vertices(); ++v)
+    for (int u = bg.use_start[v]; u < bg.use_start[v + 1]; ++u, ++uses) {
+      const int f = bg.use_face[u];
+      const Vec2& uv = bg.patches[f - 1].uv[bg.use_local[u]];
+      double h = -1;
+      REQUIRE(memo.find(f, uv, h));
+      CHECK(h == face_curvature_size(model, f, uv, p));
+      curved += h < kNoLimit;
+    }
+  CHECK(uses > bg.num_vertices());  // curve vertices lie on two faces
+  CHECK(curved > 0);
+  // A uv never asked is not in it.
+  double h = 0;
+  CHECK_FALSE(memo.find(1, Vec2(-123.25, 456.5), h));
+}
