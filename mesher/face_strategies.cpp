@@ -111,8 +111,7 @@ void mesh_inside(const FaceMesh& given, FaceSurface& fs, const MeshOptions& o, F
   const FaceMesh raw = off_bands(given, fs);
   FaceMesh steady = raw;
   const bool curled = steady_boundary_normals(steady, fs) > 0;
-  const double expected = face < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[face] : 0.0;
-  const long long budget = front_step_budget(expected, raw.num_nodes());
+  const long long budget = front_step_budget(o.expected(face), raw.num_nodes());
   // Strict runs first: no triangle turned against the surface, leftovers
   // closed only by ears that face the surface; with the boundary normals
   // steadied where the surface curls, then (if that changed any) without.

@@ -47,10 +47,7 @@ SurfaceMesh mesh_in_arena(const Geometry& g, const SizeField& h, const MeshOptio
   // so the mesh is the same for any order and thread count.
   std::vector<int> order(nf);
   std::iota(order.begin(), order.end(), 1);
-  const auto expected = [&](int f) {
-    return f < static_cast<int>(o.expected_triangles.size()) ? o.expected_triangles[f] : 0.0;
-  };
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return expected(a) > expected(b); });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return o.expected(a) > o.expected(b); });
   std::atomic<int> done{0}, next{0};
   const int workers = std::min(nf, tbb::this_task_arena::max_concurrency());
   tbb::parallel_for(

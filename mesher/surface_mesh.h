@@ -65,6 +65,10 @@ struct MeshOptions {
   // Triangles the size map asks for per face (index face id; estimated by the sizing stage):
   // the face mesher's work budget. Empty: budgets from the boundary alone.
   std::vector<double> expected_triangles;
+  // Face f's entry, 0 when there is none.
+  double expected(int f) const {
+    return f >= 0 && f < static_cast<int>(expected_triangles.size()) ? expected_triangles[f] : 0.0;
+  }
   // (The accuracy rules the size map was built with travel with it: SizeField::accuracy().)
   // Called after each face with (faces done, faces in all), from any thread.
   std::function<void(int, int)> on_face_done;
