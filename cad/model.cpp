@@ -1,5 +1,6 @@
 // Model: its accessors and the Geometry interface over the cached OpenCASCADE data.
 #include <BRep_Tool.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_CLProps.hxx>
 #include <GeomLProp_SLProps.hxx>
@@ -157,6 +158,21 @@ bool Model::face_elementary(int face) const {
     case GeomAbs_Torus: return true;
     default: return false;
   }
+}
+std::vector<double> Model::face_knots(int face, int direction) const {
+  std::vector<double> out;
+  const GeomAdaptor_Surface& a = impl_->adaptor(face);
+  if (a.GetType() != GeomAbs_BSplineSurface) return out;
+  const Handle(Geom_BSplineSurface) s = a.BSpline();
+  if (s.IsNull()) return out;
+  const UVBox box = impl_->face_data[face - 1].uv_bounds;
+  const double lo = box.lo[direction], hi = box.hi[direction];
+  const int n = direction == 0 ? s->NbUKnots() : s->NbVKnots();
+  for (int i = 1; i <= n; ++i) {
+    const double k = direction == 0 ? s->UKnot(i) : s->VKnot(i);
+    if (k > lo && k < hi) out.push_back(k);
+  }
+  return out;
 }
 UVBox Model::face_uv_bounds(int face) const { return impl_->face_data[face - 1].uv_bounds; }
 double Model::face_period_u(int face) const { return impl_->face_data[face - 1].period_u; }

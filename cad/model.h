@@ -112,6 +112,7 @@ class Model : public Geometry {
   bool principal_curvatures(int face, const Vec2& uv, double& k1, double& k2) const override;
   bool face_reversed(int face) const override;
   bool face_elementary(int face) const override;
+  std::vector<double> face_knots(int face, int direction) const override;
   UVBox face_uv_bounds(int face) const override;
   double face_period_u(int face) const override;
   double face_period_v(int face) const override;

@@ -9,6 +9,7 @@ namespace {
 
 constexpr int kIntervals = 96;  // knots of a map
 constexpr int kLines = 8;       // lines across the face averaged into a direction's speed
+constexpr size_t kMaxOwnKnots = 4 * kIntervals;  // surface knots a map takes at most
 
 // The knot interval [i - 1, i] of increasing knots that holds x; outside
 // the range, the end interval (whose line then extends the map).
@@ -43,15 +44,34 @@ UvStretch::UvStretch(const Geometry& g, int face) {
     const int o = 1 - d;
     const double lo = box.lo[d], hi = box.hi[d];
     if (!(hi > lo) || !std::isfinite(hi - lo)) continue;
-    // Speed along direction d at each knot on lines across the face, and its mean.
-    std::vector<double> knot(kIntervals + 1), speed(kIntervals + 1, 0.0);
-    std::vector<std::array<double, kLines>> line(kIntervals + 1);
-    bool ok = true;
-    for (int i = 0; i <= kIntervals && ok; ++i) {
-      knot[i] = lo + (hi - lo) * i / kIntervals;
+    // The map's knots: even steps, and the surface's own knots, across which
+    // its speed may jump (a B-spline only C0 in its parameter there): a map
+    // interval then never straddles a jump. A surface with very many knots
+    // gives every few of them.
+    std::vector<double> knot(kIntervals + 1);
+    for (int i = 0; i <= kIntervals; ++i) knot[i] = lo + (hi - lo) * i / kIntervals;
+    const std::vector<double> own = g.face_knots(face, d);
+    const size_t every = own.size() / kMaxOwnKnots + 1;
+    for (size_t i = 0; i < own.size(); i += every) knot.push_back(own[i]);
+    std::sort(knot.begin(), knot.end());
+    const double apart = 1e-9 * (hi - lo);
+    knot.erase(std::unique(knot.begin(), knot.end(), [&](double a, double b) { return b - a <= apart; }), knot.end());
+    knot.back() = hi;
+    const size_t n = knot.size() - 1;  // intervals
+    // Speed along direction d in the middle of each interval (never on a
+    // knot, where it may take either side's value), then at both ends of the
+    // range (where a speed falling to zero at the face's edge shows, which
+    // the map must follow), on lines across the face. The map integrates the
+    // first n; whether to stretch looks at all.
+    const size_t m = n + 2;
+    std::vector<double> speed(m, 0.0);
+    std::vector<std::array<double, kLines>> line(m);
+    bool ok = n > 0;
+    for (size_t i = 0; i < m && ok; ++i) {
+      const double at = i < n ? 0.5 * (knot[i] + knot[i + 1]) : i == n ? lo : hi;
       for (int j = 0; j < kLines && ok; ++j) {
         Vec2 uv;
-        uv[d] = knot[i];
+        uv[d] = at;
         uv[o] = box.lo[o] + (box.hi[o] - box.lo[o]) * (j + 0.5) / kLines;
         try {
           const SurfaceD1 s = g.eval_face(face, uv);
@@ -67,7 +87,11 @@ UvStretch::UvStretch(const Geometry& g, int face) {
     const double top = *std::max_element(speed.begin(), speed.end());
     const double bottom = *std::min_element(speed.begin(), speed.end());
     if (!(top > 0) || !(top > kRatio * bottom)) continue;
-    const double floor = 1e-3 * top;  // keeps the map strictly increasing where the speed vanishes
+    // Keeps the map strictly increasing where the speed vanishes, and no
+    // higher: a span a thousandth as fast as the fastest (a fairing's
+    // rounded corner) keeps its true width, and a span where the surface
+    // stands still (a trailing edge written as a strip) gets next to none.
+    const double floor = 1e-6 * top;
     // The mean must carry the variation: on every line, the speed left after
     // stretching (line / mean) varies at most half as much as the mean does.
     // Where lines differ in shape (a speed that grows along one side only),
@@ -75,7 +99,7 @@ UvStretch::UvStretch(const Geometry& g, int face) {
     double left = 1;
     for (int j = 0; j < kLines; ++j) {
       double a = HUGE_VAL, b = 0;
-      for (int i = 0; i <= kIntervals; ++i) {
+      for (size_t i = 0; i < m; ++i) {
         const double r = std::max(line[i][j], floor) / std::max(speed[i], floor);
         a = std::min(a, r);
         b = std::max(b, r);
@@ -84,12 +108,9 @@ UvStretch::UvStretch(const Geometry& g, int face) {
     }
     if (!(2 * left <= top / std::max(bottom, floor))) continue;
     // w(u): the integral of the speed (floored so the map stays strictly
-    // increasing), scaled back onto [lo, hi].
-    std::vector<double> w(kIntervals + 1, 0.0);
-    for (int i = 1; i <= kIntervals; ++i) {
-      const double a = std::max(speed[i - 1], floor), b = std::max(speed[i], floor);
-      w[i] = w[i - 1] + 0.5 * (a + b) * (knot[i] - knot[i - 1]);
-    }
+    // increasing), by the midpoint rule, scaled back onto [lo, hi].
+    std::vector<double> w(n + 1, 0.0);
+    for (size_t i = 0; i < n; ++i) w[i + 1] = w[i] + std::max(speed[i], floor) * (knot[i + 1] - knot[i]);
     const double total = w.back();
     for (double& x : w) x = lo + (hi - lo) * (x / total);
     w.back() = hi;

@@ -11,9 +11,12 @@
 // metric is nearly uniform again.
 //
 // Per direction (u, then v): the mean speed over lines across the face's uv
-// box, integrated to a monotone piecewise-linear map w(u) over the same range
-// (linear beyond it). Identity in a periodic direction and where the mean
-// speed varies by less than kRatio; both maps identity for most faces.
+// box, taken in the middle of each interval between the map's knots (even
+// steps and the surface's own knots, where a B-spline's speed may jump:
+// exporters write rounded corners as spans each several times shorter than
+// the last), integrated to a monotone piecewise-linear map w(u) over the same
+// range (linear beyond it). Identity in a periodic direction and where the
+// mean speed varies by less than kRatio; both maps identity for most faces.
 #pragma once
 
 #include <vector>
