@@ -1,6 +1,7 @@
 // The advancing front ends on every input and never leaves its region: a face
 // of the OpenVSP manta where it once ran away without end, a face whose
-// surface stalls across a band at its boundary, the step budget,
+// surface stalls across a band at its boundary, the transport's fairing
+// faces whose speed jumps at every knot, the step budget,
 // the ear-clipping fill of a front's leftover, and the triangle estimate that
 // sets the budget.
 #include <catch2/catch.hpp>
@@ -148,6 +149,31 @@ TEST_CASE("the front advances from a trailing edge where the surface stalls acro
   };
   CHECK(open_at_trailing_edge(raw) == 0);
   CHECK(open_at_trailing_edge(lifted) == 0);
+}
+
+TEST_CASE("the transport's belly fairing, its rounded corner written as ever shorter knot spans, closes at the first strict strategy", "[front]") {
+  // Faces 30, 34, 37 and 41 run round the fairing's lower corner: along v
+  // each knot span is four times shorter in space than the one before, down
+  // to 7e-5 ft and back, 0.03 ft across which the normal turns 85 degrees.
+  // With the uv stretch's intervals straddling those speed jumps, every
+  // strict strategy stopped there in pockets of three nodes (face 41: 42
+  // front edges left) and the faces went to the lenient run; stretched span
+  // by span, the first strategy closes each of them.
+  Sized s("transport_wbnp_openvsp.stp");
+  const CurveMesh cm = discretise_curves(s.model, s.query);
+  const TriangleEstimate& e = s.run->estimate;
+  for (int face : {30, 34, 37, 41}) {
+    INFO("face " << face);
+    FaceSurface fs(s.model, s.query, face);
+    FaceMesh boundary = off_bands(face_boundary(s.model, cm, fs), fs);
+    steady_boundary_normals(boundary, fs);
+    FaceMesh fm = boundary;
+    const FrontResult r = advancing_front(fm, fs, 0, front_step_budget(e.per_face[face], boundary.num_nodes()), false);
+    CHECK(r.ok);
+    CHECK(r.open_edges.empty());
+    CHECK(fm.tris.size() > 100);
+    CHECK(triangles_area(fm) == Approx(loops_area(boundary)).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("a spent step budget stops the front with a reason, never more triangles than steps", "[front]") {
