@@ -9,7 +9,9 @@ misoriented edges, intersecting triangle pairs, the share of all triangles under
 12 degrees, the share under 12 degrees but those at feature corners sharper than 12 degrees (issue
 "composite faces": at most 0.05%), the share under 24 degrees (at most
 0.5%), how many under 12 are avoidable (not forced by a CAD corner, a
-narrow face or a short curve), inverted triangles, the share sized at h_min, and TetGen's verdict on the .smesh
+narrow face or a short curve), inverted triangles, the faces closed only by
+the front's lenient run (which may accept a triangle turned against the
+surface; the optimiser usually repairs it), the share sized at h_min, and TetGen's verdict on the .smesh
 (`tetgen -pYQ` builds a volume only inside a closed surface free of
 self-intersections). A half model (a half wing whose root lies on a
 coordinate plane) is run with `--farfield box --symmetry` on that plane. Must hold (issue "every aircraft to one clean wetted surface"):
@@ -77,7 +79,7 @@ def main():
     a = ap.parse_args()
     binary = os.path.join(a.build, "sizemesh")
     head = (f"{'model':30s} {'exit':>4s} {'wall s':>7s} {'peak MB':>7s} {'prep s':>6s} {'triangles':>9s} "
-            f"{'bound':>5s} {'nonman':>6s} {'misor':>5s} {'pairs':>6s} {'<12 all%':>7s} {'<12deg %':>8s} {'<24deg %':>7s} {'avoid':>5s} {'inv':>3s} {'h_min %':>7s} "
+            f"{'bound':>5s} {'nonman':>6s} {'misor':>5s} {'pairs':>6s} {'<12 all%':>7s} {'<12deg %':>8s} {'<24deg %':>7s} {'avoid':>5s} {'inv':>3s} {'lenient':>7s} {'h_min %':>7s} "
             f"{'tetgen':>7s}  route")
     print(head)
     with tempfile.TemporaryDirectory() as tmp:
@@ -103,7 +105,7 @@ def main():
             line = (f"{name:30s} {code:4d} {wall:7.2f} {peak:7.0f} {j.get('seconds', {}).get('prepare', float('nan')):6.2f} "
                     f"{tris:9d} {mesh.get('boundary_edges', -1):5d} {mesh.get('nonmanifold_edges', -1):6d} "
                     f"{mesh.get('orientation_conflicts', -1):5d} {mesh.get('self_intersecting_pairs', -1):6d} "
-                    f"{share_all:7.3f} {share:8.3f} {share24:7.3f} {mesh.get('avoidable_below_12deg', -1):5d} {mesh.get('inverted_triangles', -1):3d} {100.0 * mesh.get('share_at_h_min', float('nan')):7.2f} {verdict:>7s}  {routes(j)}")
+                    f"{share_all:7.3f} {share:8.3f} {share24:7.3f} {mesh.get('avoidable_below_12deg', -1):5d} {mesh.get('inverted_triangles', -1):3d} {j.get('mesher', {}).get('faces_lenient', -1):7d} {100.0 * mesh.get('share_at_h_min', float('nan')):7.2f} {verdict:>7s}  {routes(j)}")
             errors = [e for e in err.splitlines() if e.startswith("sizemesh: error:")]
             if code not in (0, 3) and errors:
                 line += "  | " + errors[-1][len("sizemesh: error: "):][:160]
