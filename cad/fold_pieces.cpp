@@ -48,11 +48,7 @@ std::vector<TopoDS_Face> rebuild_piece(const TopoDS_Face& piece, double tol) {
   for (int d = 0; d < 2; ++d) {
     const bool along_u = d == 0;
     const double t0 = range[d][0], t1 = range[d][1], lo = along_u ? v0 : u0, hi = along_u ? v1 : u1;
-    const double eps = 1e-9 * (t1 - t0);
-    const int knots = along_u ? b->NbUKnots() : b->NbVKnots();
-    for (int k = 1; k <= knots; ++k) {
-      const double t = along_u ? b->UKnot(k) : b->VKnot(k);
-      if (t <= t0 + eps || t >= t1 - eps) continue;
+    for (const double t : knots_inside(*b, along_u, t0, t1)) {
       if (t > range[d][0] && collapsed_strip(*b, along_u, t0, t, lo, hi, tol)) range[d][0] = t, changed = true;
       if (t < range[d][1] && collapsed_strip(*b, along_u, t, t1, lo, hi, tol))
         range[d][1] = std::min(range[d][1], t), changed = true;
@@ -63,12 +59,9 @@ std::vector<TopoDS_Face> rebuild_piece(const TopoDS_Face& piece, double tol) {
   std::vector<double> cuts[2] = {{range[0][0]}, {range[1][0]}};
   for (int d = 0; d < 2; ++d) {
     const bool along_u = d == 0;  // the cut's parameter is u; the borders are v = const
-    const double t0 = range[d][0], t1 = range[d][1], eps = 1e-9 * (t1 - t0);
-    const int knots = along_u ? b->NbUKnots() : b->NbVKnots();
+    const double t0 = range[d][0], t1 = range[d][1];
     double best_gap = std::numeric_limits<double>::infinity(), best = t0;
-    for (int k = 1; k <= knots; ++k) {
-      const double t = along_u ? b->UKnot(k) : b->VKnot(k);
-      if (t <= t0 + eps || t >= t1 - eps) continue;
+    for (const double t : knots_inside(*b, along_u, t0, t1)) {
       for (double c : {range[1 - d][0], range[1 - d][1]}) {
         const double gap = fold_back_gap(*b, !along_u, c, t0, t, t1, tol);
         if (gap <= tol && gap < best_gap) best_gap = gap, best = t;

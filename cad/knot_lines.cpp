@@ -255,4 +255,15 @@ std::vector<double> kept_splits(const Geom_BSplineSurface& s, bool along_u, std:
   return out;
 }
 
+std::vector<double> knots_inside(const Geom_BSplineSurface& s, bool along_u, double t0, double t1) {
+  std::vector<double> out;
+  const double eps = 1e-9 * (t1 - t0);
+  const int knots = along_u ? s.NbUKnots() : s.NbVKnots();
+  for (int k = 1; k <= knots; ++k) {
+    const double t = along_u ? s.UKnot(k) : s.VKnot(k);
+    if (t > t0 + eps && t < t1 - eps) out.push_back(t);
+  }
+  return out;
+}
+
 }  // namespace sizemesh::detail

@@ -8,6 +8,10 @@
 
 namespace sizemesh::detail {
 
+// The distinct knots of s along u (along_u) or v inside (t0, t1), each more
+// than 1e-9 of that range from its ends.
+std::vector<double> knots_inside(const Geom_BSplineSurface& s, bool along_u, double t0, double t1);
+
 // How strongly, somewhere in [lo, hi] of the other parameter, the knot line
 // `along_u ? u = t : v = t` is a fold or a jump:
 //  - fold: the surface turns over within `band` (model units) on either side

@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "cad/knot_lines.h"
 #include "cad/occt_model.h"
 
 namespace sizemesh {
@@ -160,19 +161,12 @@ bool Model::face_elementary(int face) const {
   }
 }
 std::vector<double> Model::face_knots(int face, int direction) const {
-  std::vector<double> out;
   const GeomAdaptor_Surface& a = impl_->adaptor(face);
-  if (a.GetType() != GeomAbs_BSplineSurface) return out;
+  if (a.GetType() != GeomAbs_BSplineSurface) return {};
   const Handle(Geom_BSplineSurface) s = a.BSpline();
-  if (s.IsNull()) return out;
+  if (s.IsNull()) return {};
   const UVBox box = impl_->face_data[face - 1].uv_bounds;
-  const double lo = box.lo[direction], hi = box.hi[direction];
-  const int n = direction == 0 ? s->NbUKnots() : s->NbVKnots();
-  for (int i = 1; i <= n; ++i) {
-    const double k = direction == 0 ? s->UKnot(i) : s->VKnot(i);
-    if (k > lo && k < hi) out.push_back(k);
-  }
-  return out;
+  return detail::knots_inside(*s, direction == 0, box.lo[direction], box.hi[direction]);
 }
 UVBox Model::face_uv_bounds(int face) const { return impl_->face_data[face - 1].uv_bounds; }
 double Model::face_period_u(int face) const { return impl_->face_data[face - 1].period_u; }

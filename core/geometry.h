@@ -69,8 +69,8 @@ class Geometry {
   virtual bool face_elementary(int face) const { return false; }
   virtual UVBox face_uv_bounds(int face) const = 0;
   // The distinct knots of the face's surface along u (direction 0) or v (1)
-  // strictly inside its uv bounds: where a B-spline's parametric speed may
-  // jump. Empty for any other surface.
+  // inside its uv bounds (more than 1e-9 of their range from either end):
+  // where a B-spline's parametric speed may jump. Empty for any other surface.
   virtual std::vector<double> face_knots(int face, int direction) const { return {}; }
   // Period in u / v, 0 when not periodic.
   virtual double face_period_u(int face) const = 0;
